@@ -1,0 +1,58 @@
+// fcl_disk: a zero-thickness circular disk shape for FCL 0.7.
+#pragma once
+
+#include <fcl/geometry/shape/cylinder.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace fcl_disk {
+namespace detail {
+/// Installs fcl_disk's functions into FCL's dispatch tables once (default method
+/// on first call); defined in src/fcl_hook.cpp. Throws std::runtime_error if the
+/// hook cannot take effect in this process.
+void ensureDiskFunctionsRegistered();
+}  // namespace detail
+
+/// A closed circular disk of zero thickness.
+///
+/// Local frame D: centre at the origin, lying in the XY plane, unit normal +Z.
+/// Units are the caller's length unit. The set is {(x, y, 0) : x^2 + y^2 <= radius^2}.
+///
+/// Disk derives from fcl::Cylinder with lz = 0 so that FCL's dispatch (whose node
+/// types are a closed enum) routes it through the GEOM_CYLINDER entries, which
+/// fcl_disk replaces with wrappers that answer disk-disk pairs analytically and
+/// forward every other pair (real cylinders included) to FCL's own function.
+/// Disk versus other shapes is answered by FCL (GJK on the flat cylinder, which is
+/// exactly the disk).
+///
+/// Constructing a Disk registers fcl_disk's functions (default method: exact).
+/// @throws std::invalid_argument if radius is not finite and positive.
+template <typename S>
+class Disk final : public fcl::Cylinder<S> {
+ public:
+  explicit Disk(S radius) : fcl::Cylinder<S>(checkedRadius(radius), S(0)) {
+    detail::ensureDiskFunctionsRegistered();
+  }
+
+  /// The unit normal of the disk in the world frame, for the pose X_WD.
+  static fcl::Vector3<S> normal(const fcl::Transform3<S>& X_WD) {
+    return X_WD.linear().col(2);
+  }
+
+ private:
+  static S checkedRadius(S radius) {
+    if (!(std::isfinite(radius) && radius > S(0))) {
+      std::ostringstream message;
+      message << "fcl_disk::Disk: radius must be finite and > 0, got " << radius;
+      throw std::invalid_argument(message.str());
+    }
+    return radius;
+  }
+};
+
+using Diskd = Disk<double>;
+using Diskf = Disk<float>;
+
+}  // namespace fcl_disk

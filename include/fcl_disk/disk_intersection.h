@@ -1,0 +1,44 @@
+// Closed-form disk-disk intersection test, used by fcl::collide on disk pairs.
+#pragma once
+
+#include <fcl/common/types.h>
+
+namespace fcl_disk {
+
+/// Contact between two intersecting disks, in the world frame, following FCL's
+/// convention for fcl::Contact: `normal` points from disk 1 towards disk 2 and
+/// translating disk 2 by penetration_depth * normal (or disk 1 by the opposite)
+/// separates them (they then touch).
+///
+/// Zero-thickness disks have no interior, so the depth is a separating
+/// translation, not an overlap of volumes: the shorter of (a) moving disk 2
+/// along +-n1 until it lies on one side of disk 1's plane and (b) moving disk 1
+/// along +-n2 until it lies on one side of disk 2's plane. It is an upper bound on
+/// the true penetration depth; it is 0 when the disks merely touch, and for
+/// coplanar overlapping disks (normal n1 then, a tie-break).
+template <typename S>
+struct DiskContact {
+  fcl::Vector3<S> pos{fcl::Vector3<S>::Zero()};     ///< a point on both disks (see below).
+  fcl::Vector3<S> normal{fcl::Vector3<S>::UnitZ()};  ///< unit, from disk 1 towards disk 2.
+  S penetration_depth{0};                            ///< >= 0.
+};
+
+/// Whether two disks share a point (closed disks: touching counts), and if so a
+/// contact. Frames, units and pose convention as in exactDiskDistance().
+///
+/// pos: crossing planes -> the midpoint of the common segment of the two chords
+/// on the planes' intersection line; coplanar -> the midpoint of the overlap of
+/// the two disks along the line of centres (the common centre if concentric).
+/// Decision tolerance: exact to rounding; a pair whose true distance is below
+/// about 1e-15 * max(1, r1 + r2 + |c1 - c2|) may be reported either way.
+/// Returns false (contact untouched) when they are apart or the input is NaN.
+template <typename S>
+bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2,
+                    DiskContact<S>* contact = nullptr);
+
+extern template bool intersectDisks(float, const fcl::Transform3<float>&, float,
+                                    const fcl::Transform3<float>&, DiskContact<float>*);
+extern template bool intersectDisks(double, const fcl::Transform3<double>&, double,
+                                    const fcl::Transform3<double>&, DiskContact<double>*);
+
+}  // namespace fcl_disk

@@ -1,0 +1,9 @@
+// fcl_disk: zero-thickness disks for FCL 0.7. Include this one header.
+#pragma once
+
+#include <fcl_disk/almohamad_selim.h>
+#include <fcl_disk/disk.h>
+#include <fcl_disk/disk_intersection.h>
+#include <fcl_disk/disk_pair.h>
+#include <fcl_disk/exact_distance.h>
+#include <fcl_disk/registration.h>

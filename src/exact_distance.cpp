@@ -1,0 +1,305 @@
+// Exact disk-disk distance. Derivation: docs/exact_distance.md; the names below
+// (c, R, m, s, w, G, e1, e2, t1, t2, a1, a2) are the document's.
+#include "fcl_disk/exact_distance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <Eigen/Eigenvalues>
+
+#include "pair_in_frame1.h"
+
+namespace fcl_disk {
+namespace {
+
+using internal::PairInFrame1;
+using internal::Vec2;
+using internal::Vec3;
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+/// Newton stops when the certified gap |q - p| - G-bound is below this many
+/// scene sizes: 45 ulps, comfortably under the 1e-12 promise and above the
+/// rounding noise (a few ulps) of evaluating both bounds.
+constexpr double kGapTolerance = 1e-14;
+
+/// Newton also stops when psi decreases by less than this (relative to scale^2)
+/// in a step: rounding level, reached on flat, near-degenerate optima.
+constexpr double kStagnation = 4 * kEps * kEps;
+
+/// Iterations are capped; typical rim-rim cases need 3-6 (docs/exact_distance.md).
+constexpr int kMaxNewtonIterations = 64;
+
+/// Backtracking halvings per Newton step before accepting the step anyway;
+/// 2^-30 of a Newton step is below the rounding of G.
+constexpr int kMaxLineSearchHalvings = 30;
+
+/// The secular equation |z(mu)| = r of the disk-constrained Newton model is
+/// solved to this relative accuracy (the step then lands on the rim to rounding,
+/// after the final rescaling) within kMaxSecularIterations.
+constexpr double kSecularTolerance = 1e-15;
+constexpr int kMaxSecularIterations = 32;
+
+/// Armijo sufficient-increase fraction (standard choice).
+constexpr double kArmijoFraction = 1e-4;
+
+/// A face-case point whose projection falls outside the other disk's rim by at
+/// most this relative amount (rounding of a point computed exactly on the rim)
+/// is clamped onto the rim instead of being handed to Newton at a kink of G.
+constexpr double kRimSlack = 16 * kEps;
+
+struct Solution {
+  Vec3 p;  // on disk 1, frame 1
+  Vec3 q;  // on disk 2, frame 1
+  double distance;
+  DiskPairFeature feature;
+  int iterations = 0;
+};
+
+/// The point of the coplanar/parallel overlap of the projections of the disks,
+/// along the line of centres (tie-break for face-face optima). Disk 2's centre
+/// projects to (c_x, c_y); returns the in-plane point, or nullopt if the
+/// projections are apart.
+std::optional<Vec2> overlapOfProjections(const PairInFrame1& pair) {
+  const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
+  const auto t = internal::coplanarOverlapMidpoint(D, pair.r1, pair.r2);
+  if (!t) return std::nullopt;
+  if (D == 0.0) return Vec2::Zero();
+  return Vec2(pair.c.x() / D * *t, pair.c.y() / D * *t);
+}
+
+/// Face case of disk 1: p inside disk 1's face, q the point of disk 2 nearest
+/// plane 1. Valid (hence optimal, by the KKT conditions) iff disk 2 lies strictly
+/// on one side of plane 1 and q projects into disk 1.
+std::optional<Solution> faceOfDisk1(const PairInFrame1& pair) {
+  const double cz = pair.c.z();
+  const double lowest_height = std::abs(cz) - pair.r2 * pair.s;
+  if (!(lowest_height > 0.0)) return std::nullopt;
+  const double side = cz > 0.0 ? 1.0 : -1.0;
+  Vec3 q;
+  if (pair.s > 0.0) {
+    // Rim point of disk 2 extreme towards plane 1: direction -side * m / s.
+    q = pair.pointOfDisk2((-side * pair.r2 / pair.s) * pair.m);
+    q.z() = side * lowest_height;  // exact height, free of the rotation's rounding
+  } else {
+    const auto overlap = overlapOfProjections(pair);
+    if (!overlap) return std::nullopt;
+    q = Vec3(overlap->x(), overlap->y(), cz);
+  }
+  Vec3 p(q.x(), q.y(), 0.0);
+  const double radial = std::sqrt(p.x() * p.x() + p.y() * p.y());
+  if (radial > pair.r1) {
+    if (radial > pair.r1 * (1.0 + kRimSlack)) return std::nullopt;
+    p.head<2>() *= pair.r1 / radial;
+  }
+  return Solution{p, q, (q - p).norm(), DiskPairFeature::face1_rim2};
+}
+
+/// The certificate g(w_hat) = w_hat.c - r1|P1 w_hat| - r2|P2 w_hat| for unit w_hat.
+double lowerBound(const PairInFrame1& pair, const Vec3& w_hat) {
+  return w_hat.dot(pair.c) - pair.r1 * pair.inPlane1(w_hat) - pair.r2 * pair.inPlane2(w_hat);
+}
+
+/// The certificate at the face normals +-n1, +-n2, where g has its kinks: there
+/// g is only Lipschitz, so near-face optima are certified better by the normal
+/// itself than by a slightly misdirected separation direction.
+double faceLowerBound(const PairInFrame1& pair) {
+  const double over_plane1 = std::abs(pair.c.z()) - pair.r2 * pair.s;
+  const double over_plane2 = std::abs(pair.R.col(2).dot(pair.c)) - pair.r1 * pair.s;
+  return std::max(over_plane1, over_plane2);
+}
+
+/// The best certificate for a pair with separation q - p (frame 1).
+double certifiedLowerBound(const PairInFrame1& pair, const Vec3& separation) {
+  const double length = separation.norm();
+  const double along_separation =
+      length > 0.0 ? lowerBound(pair, separation / length) : 0.0;
+  return std::max({0.0, along_separation, faceLowerBound(pair)});
+}
+
+/// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1, with its gradient
+/// and Hessian in plane 1's coordinates (docs/exact_distance.md, section 4).
+struct PointToDisk2 {
+  Vec3 q;          ///< proj_K2(x), frame 1.
+  double psi;      ///< |x - q|^2 / 2.
+  Vec2 gradient;   ///< (x - q)_xy.
+  Eigen::Matrix2d hessian;
+};
+
+PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
+  const Vec3 x(s.x(), s.y(), 0.0);
+  const Vec3 from_c2 = x - pair.c;
+  const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));  // x in disk 2's plane
+  const double rho = y.norm();
+  PointToDisk2 out;
+  // m2 = in-plane (frame 1) part of n2: the Hessian of height^2/2 over plane 2.
+  const Vec2 m2(pair.R(0, 2), pair.R(1, 2));
+  if (rho <= pair.r2) {  // x projects into disk 2's face
+    out.q = pair.c + y.x() * pair.R.col(0) + y.y() * pair.R.col(1);
+    out.hessian = m2 * m2.transpose();
+  } else {  // nearest point on disk 2's rim, radial direction e
+    const Vec3 e = (y.x() / rho) * pair.R.col(0) + (y.y() / rho) * pair.R.col(1);
+    out.q = pair.c + pair.r2 * e;
+    // Hessian of dist^2/2 to a circle's disk outside it: I - (r2/rho) t t^T, t = n2 x e.
+    const Vec3 t = pair.R.col(2).cross(e);
+    const Vec2 t_xy(t.x(), t.y());
+    out.hessian = Eigen::Matrix2d::Identity() - (pair.r2 / rho) * t_xy * t_xy.transpose();
+  }
+  const Vec3 residual = x - out.q;
+  out.psi = 0.5 * residual.squaredNorm();
+  out.gradient = residual.head<2>();
+  return out;
+}
+
+/// Minimiser of the model m(z) = b.z + z'Hz/2 over the disk |z| <= r, for H
+/// symmetric positive semidefinite (2x2): the interior Newton point if it lies in
+/// the disk, else the point on the circle where (H + mu I) z = -b with mu >= 0,
+/// found from the secular equation |z(mu)| = r (Moré & Sorensen's iteration on
+/// 1/|z(mu)| - 1/r, safeguarded by bisection).
+Vec2 minimiseModelOnDisk(const Eigen::Matrix2d& H, const Vec2& b, double r) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
+  eigen.computeDirect(H);
+  const Vec2 h = eigen.eigenvalues().cwiseMax(0.0);  // ascending; clip rounding below 0
+  const Eigen::Matrix2d V = eigen.eigenvectors();
+  const Vec2 beta = V.transpose() * b;
+  auto z_of = [&](double mu) { return Vec2(-beta.x() / (h.x() + mu), -beta.y() / (h.y() + mu)); };
+  if (h.x() > 0.0) {
+    const Vec2 z = z_of(0.0);
+    if (z.norm() <= r) return V * z;
+  }
+  // On the circle. |z(mu)| decreases on (-h_min, inf); |z(mu_hi)| <= r at mu_hi = |b|/r.
+  double mu_lo = 0.0, mu_hi = b.norm() / r;
+  if (!(z_of(mu_lo).norm() > r)) {
+    // Hard case (b has no component along the null eigenvector of H): complete
+    // z(0) along that eigenvector to reach the circle.
+    Vec2 z(0.0, h.y() > 0.0 ? -beta.y() / h.y() : 0.0);
+    z.x() = std::sqrt(std::max(0.0, r * r - z.y() * z.y()));
+    return V * z;
+  }
+  double mu = mu_hi;
+  for (int iteration = 0; iteration < kMaxSecularIterations; ++iteration) {
+    const Vec2 z = z_of(mu);
+    const double norm = z.norm();
+    if (std::abs(norm - r) <= kSecularTolerance * r) break;
+    if (norm > r) mu_lo = mu; else mu_hi = mu;
+    // Newton on phi(mu) = 1/|z| - 1/r, which is nearly linear in mu.
+    const Vec2 dz = Vec2(z.x() / (h.x() + mu), z.y() / (h.y() + mu));  // -dz/dmu
+    const double derivative = z.dot(dz) / (norm * norm * norm);     // phi'(mu)
+    double next = mu - (1.0 / norm - 1.0 / r) / derivative;
+    if (!(next > mu_lo && next < mu_hi)) next = 0.5 * (mu_lo + mu_hi);
+    mu = next;
+  }
+  Vec2 z = z_of(mu);
+  return V * (z * (r / z.norm()));  // exactly on the circle
+}
+
+/// Rim-rim case: minimise the convex psi(s) = dist(x(s), K2)^2 / 2 over disk 1
+/// (|s| <= r1) by Newton's method with the disk constraint in the model: each
+/// step minimises psi's quadratic model over the disk exactly, then backtracks
+/// on psi. Iterates stay feasible and psi decreases, so by convexity they cannot
+/// stall on the rim's spurious local minima; near the optimum the steps are full
+/// Newton steps with the rim's curvature, hence quadratic convergence. Each
+/// iterate gives a feasible pair (upper bound) and the duality certificate (lower
+/// bound); stop when they agree to kGapTolerance * scale.
+Solution rimRim(const PairInFrame1& pair, double scale) {
+  const double r1 = pair.r1;
+  // Start: the point of disk 1 nearest disk 2's centre.
+  Vec2 s(pair.c.x(), pair.c.y());
+  if (s.norm() > r1) s *= r1 / s.norm();
+  PointToDisk2 at = evaluate(pair, s);
+  Solution best{Vec3(s.x(), s.y(), 0.0), at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim};
+  const double gap_tolerance = kGapTolerance * scale;
+  for (int iteration = 1; iteration <= kMaxNewtonIterations; ++iteration) {
+    const Vec3 x(s.x(), s.y(), 0.0);
+    const double upper = std::sqrt(2.0 * at.psi);
+    if (upper <= best.distance) best = {x, at.q, upper, DiskPairFeature::rim_rim, iteration};
+    const double lower = certifiedLowerBound(pair, at.q - x);
+#ifdef FCL_DISK_TRACE
+    fprintf(stderr, "it %d s=(%.17g %.17g) |s|-r1=%g upper=%.17g lower=%.17g\n", iteration,
+            s.x(), s.y(), s.norm() - r1, upper, lower);
+#endif
+    if (best.distance - lower <= gap_tolerance) {
+      best.iterations = iteration;
+      return best;
+    }
+    // Model in z = s + step: b = gradient - H s.
+    const Vec2 target = minimiseModelOnDisk(at.hessian, at.gradient - at.hessian * s, r1);
+    const Vec2 step = target - s;
+    const double slope = at.gradient.dot(step);
+    if (!(slope < 0.0)) break;  // no descent left: rounding floor reached
+    double alpha = 1.0;
+    bool improved = false;
+    PointToDisk2 next;
+    for (int halving = 0; halving < kMaxLineSearchHalvings && !improved; ++halving) {
+      next = evaluate(pair, s + alpha * step);
+      improved = next.psi <= at.psi + kArmijoFraction * alpha * slope;
+      if (!improved) alpha *= 0.5;
+    }
+    if (!improved) break;
+    s += alpha * step;
+    // Stagnation: psi no longer decreases beyond rounding (degenerate optima are
+    // flat along the rim); the pair is as good as double allows, the certificate
+    // says how well it is proven.
+    if (at.psi - next.psi <= kStagnation * scale * scale) {
+      at = next;
+      const Vec3 x_last(s.x(), s.y(), 0.0);
+      const double last = std::sqrt(2.0 * at.psi);
+      if (last <= best.distance) best = {x_last, at.q, last, DiskPairFeature::rim_rim, iteration};
+      break;
+    }
+    at = next;
+  }
+  return best;  // the best certified pair found (see lower_bound)
+}
+
+Solution solveInFrame1(const PairInFrame1& pair) {
+  const double scale = std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
+  if (!std::isfinite(scale) || !pair.R.allFinite()) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    return {Vec3::Constant(nan), Vec3::Constant(nan), nan, DiskPairFeature::rim_rim};
+  }
+  if (const auto common = internal::commonPoint(pair)) {
+    return {*common, *common, 0.0, DiskPairFeature::intersecting};
+  }
+  if (auto face1 = faceOfDisk1(pair)) return *face1;
+  const PairInFrame1 seen_from_2 = pair.swapped();
+  if (auto face2 = faceOfDisk1(seen_from_2)) {
+    // Map back from disk 2's frame: x_1 = c + R x_2.
+    const Vec3 p = pair.c + pair.R * face2->q;
+    const Vec3 q = pair.c + pair.R * face2->p;
+    return {p, q, face2->distance, DiskPairFeature::rim1_face2};
+  }
+  return rimRim(pair, scale);
+}
+
+}  // namespace
+
+template <typename S>
+DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                        const fcl::Transform3<S>& X_W2) {
+  const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
+  const Solution solution = solveInFrame1(pair);
+
+  const double lower = solution.distance > 0.0 ? certifiedLowerBound(pair, solution.q - solution.p)
+                                              : 0.0;
+
+  const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
+  const Vec3 c1 = X_W1.translation().template cast<double>();
+  DiskDistanceResult<S> result;
+  result.distance = S(solution.distance);
+  result.p_W1 = (c1 + R_W1 * solution.p).template cast<S>();
+  result.p_W2 = (c1 + R_W1 * solution.q).template cast<S>();
+  result.lower_bound = S(lower);
+  result.feature = solution.feature;
+  result.iterations = solution.iterations;
+  return result;
+}
+
+template DiskDistanceResult<float> exactDiskDistance(float, const fcl::Transform3<float>&, float,
+                                                     const fcl::Transform3<float>&);
+template DiskDistanceResult<double> exactDiskDistance(double, const fcl::Transform3<double>&,
+                                                      double, const fcl::Transform3<double>&);
+
+}  // namespace fcl_disk

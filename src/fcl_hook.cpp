@@ -1,0 +1,402 @@
+// The one place that wires disks into FCL's dispatch. Read top to bottom:
+//   1. what a disk-disk entry does (distance, collision);
+//   2. the wrappers that sit in FCL's GEOM_CYLINDER x GEOM_CYLINDER slots and
+//      forward every pair that is not two Disks to FCL's original function;
+//   3. installing them into the tables user code sees, and into the private
+//      copies inside libfcl.so (docs/fcl_hook.md explains why both);
+//   4. a probe that proves the hook answers plain fcl::distance / fcl::collide.
+#include "fcl_disk/registration.h"
+
+#include <dlfcn.h>
+#include <link.h>
+
+#include <atomic>
+#include <cstdint>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/utility.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include "fcl_disk/almohamad_selim.h"
+#include "fcl_disk/disk.h"
+#include "fcl_disk/disk_intersection.h"
+#include "fcl_disk/exact_distance.h"
+
+namespace fcl_disk {
+namespace {
+
+using fcl::CollisionGeometry;
+using fcl::Transform3;
+
+std::atomic<DiskDistanceMethod> g_method{DiskDistanceMethod::exact};
+
+// Counts disk-disk answers on this thread; the probe uses it to prove that a
+// query reached fcl_disk rather than FCL's GJK.
+thread_local std::uint64_t t_disk_answers = 0;
+
+// ---------------------------------------------------------------------------
+// 1. Disk-disk entries.
+
+/// The Disk behind a geometry that reached a GEOM_CYLINDER slot, or nullptr for a
+/// real cylinder. lz != 0 rejects real cylinders before paying for RTTI.
+template <typename S>
+const Disk<S>* asDisk(const CollisionGeometry<S>* geometry) {
+  if (static_cast<const fcl::Cylinder<S>*>(geometry)->lz != S(0)) return nullptr;
+  return dynamic_cast<const Disk<S>*>(geometry);
+}
+
+template <typename S>
+S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk<S>& disk2,
+                     const Transform3<S>& X_W2, const fcl::DistanceRequest<S>& request,
+                     fcl::DistanceResult<S>& result) {
+  // Same early exit as FCL's ShapeShapeDistance.
+  if (request.isSatisfied(result)) return result.min_distance;
+  ++t_disk_answers;
+  const DiskDistanceResult<S> answer =
+      g_method.load(std::memory_order_relaxed) == DiskDistanceMethod::almohamad_selim
+          ? almohamadSelimDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2)
+          : exactDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2);
+  // Overlap: distance 0 with a common point as both nearest points, for signed and
+  // unsigned requests alike (a zero-thickness disk has no interior to penetrate).
+  result.update(answer.distance, &disk1, &disk2, fcl::DistanceResult<S>::NONE,
+                fcl::DistanceResult<S>::NONE, answer.p_W1, answer.p_W2);
+  return answer.distance;
+}
+
+template <typename S>
+std::size_t answerDiskCollision(const Disk<S>& disk1, const Transform3<S>& X_W1,
+                                const Disk<S>& disk2, const Transform3<S>& X_W2,
+                                const fcl::CollisionRequest<S>& request,
+                                fcl::CollisionResult<S>& result) {
+  // Mirrors FCL's ShapeCollisionTraversalNode::leafTesting for shape pairs.
+  if (request.isSatisfied(result)) return result.numContacts();
+  ++t_disk_answers;
+  if (!(disk1.isOccupied() && disk2.isOccupied())) return result.numContacts();
+  DiskContact<S> contact;
+  if (!intersectDisks(disk1.radius, X_W1, disk2.radius, X_W2, &contact)) {
+    return result.numContacts();
+  }
+  if (request.num_max_contacts > result.numContacts()) {
+    using Contact = fcl::Contact<S>;
+    if (request.enable_contact) {
+      result.addContact(Contact(&disk1, &disk2, Contact::NONE, Contact::NONE, contact.pos,
+                                contact.normal, contact.penetration_depth));
+    } else {
+      result.addContact(Contact(&disk1, &disk2, Contact::NONE, Contact::NONE));
+    }
+  }
+  if (request.enable_cost) {
+    fcl::AABB<S> aabb1, aabb2, overlap;
+    fcl::computeBV(disk1, X_W1, aabb1);
+    fcl::computeBV(disk2, X_W2, aabb2);
+    aabb1.overlap(aabb2, overlap);
+    result.addCostSource(fcl::CostSource<S>(overlap, disk1.cost_density * disk2.cost_density),
+                         request.num_max_cost_sources);
+  }
+  return result.numContacts();
+}
+
+// ---------------------------------------------------------------------------
+// 2. Wrappers for the GEOM_CYLINDER x GEOM_CYLINDER slots.
+//
+// `Solver` is only passed through to FCL's original entry, never dereferenced
+// here, so one wrapper shape serves every table; `Slot` gives each patched table
+// its own saved original.
+
+template <typename S, typename Solver, int Slot>
+struct DistanceSlot {
+  using Entry = S (*)(const CollisionGeometry<S>*, const Transform3<S>&,
+                      const CollisionGeometry<S>*, const Transform3<S>&, const Solver*,
+                      const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);
+  static inline std::atomic<Entry> original{nullptr};
+
+  static S call(const CollisionGeometry<S>* o1, const Transform3<S>& tf1,
+                const CollisionGeometry<S>* o2, const Transform3<S>& tf2, const Solver* solver,
+                const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+    const Disk<S>* disk1 = asDisk(o1);
+    const Disk<S>* disk2 = disk1 ? asDisk(o2) : nullptr;
+    if (disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, request, result);
+    return original.load(std::memory_order_acquire)(o1, tf1, o2, tf2, solver, request, result);
+  }
+};
+
+template <typename S, typename Solver, int Slot>
+struct CollisionSlot {
+  using Entry = std::size_t (*)(const CollisionGeometry<S>*, const Transform3<S>&,
+                                const CollisionGeometry<S>*, const Transform3<S>&,
+                                const Solver*, const fcl::CollisionRequest<S>&,
+                                fcl::CollisionResult<S>&);
+  static inline std::atomic<Entry> original{nullptr};
+
+  static std::size_t call(const CollisionGeometry<S>* o1, const Transform3<S>& tf1,
+                          const CollisionGeometry<S>* o2, const Transform3<S>& tf2,
+                          const Solver* solver, const fcl::CollisionRequest<S>& request,
+                          fcl::CollisionResult<S>& result) {
+    const Disk<S>* disk1 = asDisk(o1);
+    const Disk<S>* disk2 = disk1 ? asDisk(o2) : nullptr;
+    if (disk2) return answerDiskCollision(*disk1, tf1, *disk2, tf2, request, result);
+    return original.load(std::memory_order_acquire)(o1, tf1, o2, tf2, solver, request, result);
+  }
+};
+
+/// Replaces table[GEOM_CYLINDER][GEOM_CYLINDER] by Wrapper::call, saving the
+/// original. Atomic stores: other threads may be dispatching non-disk pairs.
+template <typename Wrapper, typename Table>
+void installIntoSlot(Table& matrix) {
+  auto& slot = matrix[fcl::GEOM_CYLINDER][fcl::GEOM_CYLINDER];
+  using Entry = typename Wrapper::Entry;
+  Entry current = __atomic_load_n(reinterpret_cast<Entry*>(&slot), __ATOMIC_ACQUIRE);
+  if (current == &Wrapper::call) return;
+  Wrapper::original.store(current, std::memory_order_release);
+  __atomic_store_n(reinterpret_cast<Entry*>(&slot), &Wrapper::call, __ATOMIC_RELEASE);
+}
+
+// ---------------------------------------------------------------------------
+// 3a. The tables that code compiled against FCL's headers uses: float paths and
+// the overloads taking a solver pointer. Their static objects are unique in the
+// process (vague linkage), so writing ours writes theirs.
+
+template <typename Solver>
+void installIntoVisibleTables() {
+  using S = typename Solver::S;
+  installIntoSlot<DistanceSlot<S, Solver, 0>>(
+      fcl::getDistanceFunctionLookTable<Solver>().distance_matrix);
+  installIntoSlot<CollisionSlot<S, Solver, 0>>(
+      fcl::getCollisionFunctionLookTable<Solver>().collision_matrix);
+}
+
+// 3b. The private copies inside libfcl.so (hidden visibility), used by plain
+// fcl::distance<double> / fcl::collide<double> and hence by the broadphase
+// default callbacks. They have no symbol, so we find them by content: a
+// NODE_COUNT x NODE_COUNT array of function pointers whose null/non-null pattern
+// equals the one FCL's own constructor produces (we build one to compare) and
+// whose entries all point into libfcl's code. libfcl instantiates double only:
+// one table per solver (libccd, indep), hence exactly two of each kind.
+
+constexpr int kEntries = fcl::NODE_COUNT * fcl::NODE_COUNT;
+constexpr int kPrivateTablesPerKind = 2;  // GJKSolver_libccd<double>, GJKSolver_indep<double>
+
+struct AddressRange {
+  std::uintptr_t begin, end;
+  bool contains(std::uintptr_t a) const { return a >= begin && a < end; }
+};
+
+struct LibfclSegments {
+  std::vector<AddressRange> writable, executable;
+  std::string path;
+};
+
+LibfclSegments findLibfclSegments() {
+  LibfclSegments segments;
+  dl_iterate_phdr(
+      [](dl_phdr_info* info, size_t, void* data) -> int {
+        if (!info->dlpi_name || !std::strstr(info->dlpi_name, "libfcl.so")) return 0;
+        auto* out = static_cast<LibfclSegments*>(data);
+        out->path = info->dlpi_name;
+        for (int i = 0; i < info->dlpi_phnum; ++i) {
+          const ElfW(Phdr)& header = info->dlpi_phdr[i];
+          if (header.p_type != PT_LOAD) continue;
+          const AddressRange range{info->dlpi_addr + header.p_vaddr,
+                                   info->dlpi_addr + header.p_vaddr + header.p_memsz};
+          if (header.p_flags & PF_W) out->writable.push_back(range);
+          if (header.p_flags & PF_X) out->executable.push_back(range);
+        }
+        return 1;
+      },
+      &segments);
+  return segments;
+}
+
+template <typename Matrix>
+std::vector<bool> nonNullPattern(const Matrix& matrix) {
+  std::vector<bool> pattern(kEntries);
+  for (int i = 0; i < kEntries; ++i) pattern[i] = (&matrix[0][0])[i] != nullptr;
+  return pattern;
+}
+
+/// Addresses of the arrays in libfcl's writable segments that look like `pattern`.
+std::vector<std::uintptr_t*> findTables(const LibfclSegments& segments,
+                                        const std::vector<bool>& pattern,
+                                        const std::vector<std::uintptr_t>& our_entries) {
+  auto is_code = [&](std::uintptr_t a) {
+    for (const auto& r : segments.executable)
+      if (r.contains(a)) return true;
+    for (auto ours : our_entries)
+      if (a == ours) return true;
+    return false;
+  };
+  std::vector<std::uintptr_t*> found;
+  for (const auto& range : segments.writable) {
+    const std::size_t bytes = kEntries * sizeof(std::uintptr_t);
+    std::uintptr_t first = (range.begin + alignof(std::uintptr_t) - 1) &
+                           ~(std::uintptr_t(alignof(std::uintptr_t)) - 1);
+    for (std::uintptr_t a = first; a + bytes <= range.end; a += sizeof(std::uintptr_t)) {
+      const auto* words = reinterpret_cast<const std::uintptr_t*>(a);
+      bool match = true;
+      for (int i = 0; i < kEntries && match; ++i) {
+        match = (words[i] != 0) == pattern[i] && (words[i] == 0 || is_code(words[i]));
+      }
+      if (match) found.push_back(reinterpret_cast<std::uintptr_t*>(a));
+    }
+  }
+  return found;
+}
+
+// libfcl's private tables hold entries typed for GJKSolver_libccd<double> or
+// GJKSolver_indep<double>; which is which cannot be told from memory. The
+// wrappers only pass the solver pointer through, so they are declared with an
+// opaque solver type; the ABI of the call is the same.
+struct OpaqueSolver;
+
+template <int Slot>
+using PrivateDistanceSlot = DistanceSlot<double, OpaqueSolver, Slot>;
+template <int Slot>
+using PrivateCollisionSlot = CollisionSlot<double, OpaqueSolver, Slot>;
+
+template <typename Wrapper>
+void installIntoPrivateTable(std::uintptr_t* table) {
+  using Entry = typename Wrapper::Entry;
+  installIntoSlot<Wrapper>(*reinterpret_cast<Entry(*)[fcl::NODE_COUNT][fcl::NODE_COUNT]>(table));
+}
+
+std::string hookFailureAdvice(const std::string& what) {
+  return "fcl_disk: cannot install the disk functions into FCL's dispatch: " + what +
+         ". fcl_disk supports FCL 0.7 as Debian/Ubuntu ship it (libfcl.so with private "
+         "dispatch tables). Use the libfcl that fcl_disk was built against, or build FCL "
+         "from source with the same headers; see docs/fcl_hook.md.";
+}
+
+/// Makes libfcl build its private tables (they are function-local statics,
+/// created on first use) by running one query per solver through libfcl's own
+/// fcl::distance<double> / fcl::collide<double>.
+void initializeLibfclTables() {
+  auto sphere = std::make_shared<fcl::Sphere<double>>(1.0);
+  fcl::Transform3<double> apart = fcl::Transform3<double>::Identity();
+  apart.translation() << 3.0, 0.0, 0.0;
+  fcl::CollisionObject<double> a(sphere), b(sphere, apart);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    fcl::DistanceRequest<double> distance_request;
+    distance_request.gjk_solver_type = solver;
+    fcl::DistanceResult<double> distance_result;
+    fcl::distance(&a, &b, distance_request, distance_result);
+    fcl::CollisionRequest<double> collision_request;
+    collision_request.gjk_solver_type = solver;
+    fcl::CollisionResult<double> collision_result;
+    fcl::collide(&a, &b, collision_request, collision_result);
+  }
+}
+
+void installIntoLibfclPrivateTables() {
+  initializeLibfclTables();
+  const LibfclSegments segments = findLibfclSegments();
+  if (segments.writable.empty() || segments.executable.empty()) {
+    throw std::runtime_error(hookFailureAdvice("libfcl.so is not loaded in this process"));
+  }
+  using Libccd = fcl::detail::GJKSolver_libccd<double>;
+  const fcl::detail::DistanceFunctionMatrix<Libccd> distance_reference;
+  const fcl::detail::CollisionFunctionMatrix<Libccd> collision_reference;
+  const std::vector<std::uintptr_t> our_entries = {
+      reinterpret_cast<std::uintptr_t>(&PrivateDistanceSlot<0>::call),
+      reinterpret_cast<std::uintptr_t>(&PrivateDistanceSlot<1>::call),
+      reinterpret_cast<std::uintptr_t>(&PrivateCollisionSlot<0>::call),
+      reinterpret_cast<std::uintptr_t>(&PrivateCollisionSlot<1>::call)};
+  const auto distance_tables =
+      findTables(segments, nonNullPattern(distance_reference.distance_matrix), our_entries);
+  const auto collision_tables =
+      findTables(segments, nonNullPattern(collision_reference.collision_matrix), our_entries);
+  if (distance_tables.size() != kPrivateTablesPerKind ||
+      collision_tables.size() != kPrivateTablesPerKind) {
+    throw std::runtime_error(hookFailureAdvice(
+        "found " + std::to_string(distance_tables.size()) + " distance and " +
+        std::to_string(collision_tables.size()) + " collision tables in " + segments.path +
+        ", expected " + std::to_string(kPrivateTablesPerKind) + " of each"));
+  }
+  installIntoPrivateTable<PrivateDistanceSlot<0>>(distance_tables[0]);
+  installIntoPrivateTable<PrivateDistanceSlot<1>>(distance_tables[1]);
+  installIntoPrivateTable<PrivateCollisionSlot<0>>(collision_tables[0]);
+  installIntoPrivateTable<PrivateCollisionSlot<1>>(collision_tables[1]);
+}
+
+// ---------------------------------------------------------------------------
+// 4. The probe: two disks through every public entry point must reach us.
+
+// Set while installing on this thread, so the probe's Disks do not re-enter
+// registration.
+thread_local bool t_installing = false;
+
+template <typename S>
+void probeOnePath(const char* path, bool reached) {
+  if (!reached) {
+    throw std::runtime_error(hookFailureAdvice(std::string("the probe query through ") + path +
+                                               " did not reach fcl_disk"));
+  }
+}
+
+template <typename S>
+void probeScalar(const char* scalar_name) {
+  auto disk = std::make_shared<Disk<S>>(S(1));
+  fcl::Transform3<S> lifted = fcl::Transform3<S>::Identity();
+  lifted.translation() << S(0.25), S(0), S(0.5);
+  fcl::CollisionObject<S> a(disk), b(disk, lifted);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    const std::string name = std::string(scalar_name) +
+                             (solver == fcl::GST_LIBCCD ? ", libccd" : ", indep");
+    std::uint64_t before = t_disk_answers;
+    fcl::DistanceRequest<S> distance_request;
+    distance_request.gjk_solver_type = solver;
+    fcl::DistanceResult<S> distance_result;
+    fcl::distance(&a, &b, distance_request, distance_result);
+    probeOnePath<S>(("fcl::distance (" + name + ")").c_str(), t_disk_answers == before + 1);
+
+    before = t_disk_answers;
+    fcl::CollisionRequest<S> collision_request;
+    collision_request.gjk_solver_type = solver;
+    fcl::CollisionResult<S> collision_result;
+    fcl::collide(&a, &b, collision_request, collision_result);
+    probeOnePath<S>(("fcl::collide (" + name + ")").c_str(), t_disk_answers == before + 1);
+  }
+}
+
+void installOnce() {
+  t_installing = true;
+  struct Reset {
+    ~Reset() { t_installing = false; }
+  } reset;
+  installIntoVisibleTables<fcl::detail::GJKSolver_libccd<float>>();
+  installIntoVisibleTables<fcl::detail::GJKSolver_indep<float>>();
+  installIntoVisibleTables<fcl::detail::GJKSolver_libccd<double>>();
+  installIntoVisibleTables<fcl::detail::GJKSolver_indep<double>>();
+  installIntoLibfclPrivateTables();
+  probeScalar<double>("double");
+  probeScalar<float>("float");
+}
+
+std::once_flag g_install_once;
+
+void install() {
+  if (t_installing) return;  // the probe's own Disks
+  std::call_once(g_install_once, installOnce);
+}
+
+}  // namespace
+
+namespace detail {
+void ensureDiskFunctionsRegistered() { install(); }
+}  // namespace detail
+
+void registerDiskFunctions(DiskDistanceMethod method) {
+  install();
+  g_method.store(method, std::memory_order_relaxed);
+}
+
+DiskDistanceMethod registeredDiskDistanceMethod() {
+  return g_method.load(std::memory_order_relaxed);
+}
+
+}  // namespace fcl_disk

@@ -1,0 +1,108 @@
+// Internal: a disk pair expressed in disk 1's frame, and the closed-form pieces
+// shared by the exact solver and the intersection test. Notation as in
+// docs/exact_distance.md: disk 1 is {z = 0, x^2 + y^2 <= r1^2}; disk 2 has centre
+// c, rotation R = [u v n] and radius r2; m = (u_z, v_z) and s = |m| = sin(tilt).
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <optional>
+
+namespace fcl_disk {
+namespace internal {
+
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+struct PairInFrame1 {
+  Vec3 c;     ///< centre of disk 2 in disk 1's frame.
+  Mat3 R;     ///< rotation of disk 2 in disk 1's frame: columns u, v, n.
+  double r1;  ///< radius of disk 1.
+  double r2;  ///< radius of disk 2.
+  Vec2 m;     ///< heights over plane 1 of disk 2's in-plane axes: (u_z, v_z).
+  double s;   ///< |m| = sine of the angle between the planes.
+
+  /// From world poses; all arithmetic in double, relative to c1 (so a common
+  /// translation, however large, costs only the rounding of c2 - c1).
+  template <typename S>
+  static PairInFrame1 fromWorld(S r1, const Eigen::Transform<S, 3, Eigen::Isometry>& X_W1, S r2,
+                                const Eigen::Transform<S, 3, Eigen::Isometry>& X_W2) {
+    const Mat3 R_W1 = X_W1.linear().template cast<double>();
+    const Vec3 c1_to_c2 =
+        X_W2.translation().template cast<double>() - X_W1.translation().template cast<double>();
+    return make(R_W1.transpose() * c1_to_c2,
+                R_W1.transpose() * X_W2.linear().template cast<double>(), double(r1), double(r2));
+  }
+
+  static PairInFrame1 make(const Vec3& c, const Mat3& R, double r1, double r2) {
+    PairInFrame1 pair{c, R, r1, r2, Vec2(R(2, 0), R(2, 1)), 0.0};
+    pair.s = std::sqrt(pair.m.squaredNorm());
+    return pair;
+  }
+
+  /// The same pair seen from disk 2: disk 1 becomes "disk 2" in disk 2's frame.
+  PairInFrame1 swapped() const { return make(-(R.transpose() * c), R.transpose(), r2, r1); }
+
+  /// Maps a point of disk-2-in-plane coordinates (a, b) to frame 1.
+  Vec3 pointOfDisk2(const Vec2& ab) const { return c + ab.x() * R.col(0) + ab.y() * R.col(1); }
+
+  /// |P1 w| and |P2 w| (lengths of w's components in the planes), from the axes.
+  double inPlane1(const Vec3& w) const { return std::sqrt(w.x() * w.x() + w.y() * w.y()); }
+  double inPlane2(const Vec3& w) const {
+    const double a = R.col(0).dot(w), b = R.col(1).dot(w);
+    return std::sqrt(a * a + b * b);
+  }
+};
+
+/// Overlap, along the unit direction `dir` through the origin, of disk 1's
+/// diameter [-r1, r1] and disk 2's diameter [D - r2, D + r2] (both disks in one
+/// plane, disk 2's centre at D * dir): the midpoint parameter, if they overlap.
+inline std::optional<double> coplanarOverlapMidpoint(double D, double r1, double r2) {
+  const double lo = std::max(-r1, D - r2);
+  const double hi = std::min(r1, D + r2);
+  if (!(lo <= hi)) return std::nullopt;
+  return 0.5 * (lo + hi);
+}
+
+/// A point shared by both disks (frame 1), or nullopt if they are apart.
+/// Crossing planes: the two chords on the planes' intersection line; parallel
+/// planes (s == 0): coplanar overlap along the line of centres.
+inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
+  const double cz = pair.c.z();
+  // Disk 2 spans heights [cz - r2 s, cz + r2 s] over plane 1.
+  if (std::abs(cz) > pair.r2 * pair.s) return std::nullopt;
+  if (!(pair.s > 0.0)) {  // coplanar (cz == 0 here), or NaN input
+    if (!(cz == 0.0)) return std::nullopt;
+    const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
+    const auto t = coplanarOverlapMidpoint(D, pair.r1, pair.r2);
+    if (!t) return std::nullopt;
+    if (D == 0.0) return Vec3::Zero();
+    return Vec3(pair.c.x() / D * *t, pair.c.y() / D * *t, 0.0);
+  }
+  // Chord of disk 2 on plane 1, in disk 2's (a, b) coordinates: the line
+  // m.(a, b) = -cz, foot f = -cz m / s^2 (|f| <= r2 by the test above),
+  // direction t = perp(m) / s, half-length h2.
+  const Vec2 foot = (-cz / (pair.s * pair.s)) * pair.m;
+  const Vec2 along(-pair.m.y() / pair.s, pair.m.x() / pair.s);
+  const double foot_norm = foot.norm();
+  const double h2 = std::sqrt(std::max(0.0, (pair.r2 - foot_norm) * (pair.r2 + foot_norm)));
+  // The same line in frame 1: X(tau) = X0 + tau * T with T horizontal and unit.
+  const Vec3 X0 = pair.pointOfDisk2(foot);
+  const Vec3 T = along.x() * pair.R.col(0) + along.y() * pair.R.col(1);
+  const Vec2 X0_xy(X0.x(), X0.y());
+  const Vec2 T_xy(T.x(), T.y());
+  const double tau_mid1 = -X0_xy.dot(T_xy) / T_xy.squaredNorm();
+  const double offset1 = (X0_xy + tau_mid1 * T_xy).norm();  // line's distance to c1
+  if (offset1 > pair.r1) return std::nullopt;
+  const double h1 = std::sqrt((pair.r1 - offset1) * (pair.r1 + offset1)) / T_xy.norm();
+  const double lo = std::max(-h2, tau_mid1 - h1);
+  const double hi = std::min(h2, tau_mid1 + h1);
+  if (!(lo <= hi)) return std::nullopt;
+  return X0 + (0.5 * (lo + hi)) * T;
+}
+
+}  // namespace internal
+}  // namespace fcl_disk

@@ -1,0 +1,445 @@
+// Accuracy of the production solvers against the independent long-double
+// reference (reference_distance.h) on the configuration families of
+// disk_families.h, and of the reference itself against hand-derived closed forms
+// and constructed exact distances.
+#include <fcl_disk/almohamad_selim.h>
+#include <fcl_disk/exact_distance.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "disk_families.h"
+#include "reference_distance.h"
+
+namespace {
+
+using fcl_disk_families::DiskPairCase;
+using fcl_disk_families::Family;
+using fcl_disk_reference::Matrix3R;
+using fcl_disk_reference::Real;
+using fcl_disk_reference::RefDisk;
+using fcl_disk_reference::ReferenceResult;
+using fcl_disk_reference::Vector3R;
+
+// ---- tolerances -------------------------------------------------------------
+
+/// The exact solver's documented guarantee in double (exact_distance.h):
+/// |distance - d_true| <= 1e-12 * sceneScale, points on their disks likewise.
+constexpr double kDoubleRelativeTolerance = 1e-12;
+
+/// Storing a point in world coordinates rounds each coordinate by half an ulp
+/// of its magnitude (<= max |c_i| + r1 + r2), i.e. the vector by
+/// sqrt(3)/2 eps M; computing it as c + R x adds about as much again. No
+/// algorithm can beat this for points far from the origin (far_from_origin:
+/// 4 eps 1e6 = 9e-10 in double, far above 1e-12 * scale), so point checks add
+/// this many eps times M. It is negligible for unit-scale families.
+constexpr double kWorldRoundingEps = 4;
+
+/// Float: the solver promotes to double and rounds the results to float. Honest
+/// error sources: (a) a float rotation is orthonormal only to ~1.5 eps_f
+/// (Frobenius, 9 entries of 1/2 ulp), and the reference re-orthonormalises it,
+/// so "the disk" is defined only to ~3 eps_f r per disk; (b) rounding the
+/// distance to float, 1/2 eps_f d. Sum <= 3.5 eps_f scale; 8 leaves room for
+/// the solver's own choice of frame interpretation.
+constexpr double kFloatEpsMultiple = 8;
+
+/// The reference against hand-derived closed forms (long-double inputs): 1e-17
+/// is ~100 long-double ulps and five orders below what it is used to judge.
+constexpr double kReferenceRelativeTolerance = 1e-17;
+
+/// Largest certificate gap (distance - lower_bound) the reference may leave on
+/// the families, relative to scale. Measured <= 2e-17 (the worst are touching
+/// pairs at rounding-level separations, where |q - p| gives no clean direction).
+constexpr double kReferenceCertificateTolerance = 1e-16;
+
+/// Cases per family. The reference costs ~0.2 ms per pair (long double, two
+/// 720-sample rim scans), so these keep the whole file to a few seconds in
+/// Release on two cores while covering every sub-kind many times.
+constexpr int kDoubleCasesPerFamily = 400;
+constexpr int kFloatCasesPerFamily = 200;
+constexpr std::uint64_t kSeed = 20240611;
+
+/// At most this many failing cases are printed per check (the count is always
+/// reported).
+constexpr int kMaxReportedFailures = 8;
+
+// ---- helpers ----------------------------------------------------------------
+
+template <typename S>
+double worldMagnitude(const DiskPairCase<S>& c) {
+  return std::max(c.X_W1.translation().template cast<double>().norm(),
+                  c.X_W2.translation().template cast<double>().norm()) +
+         double(c.r1) + double(c.r2);
+}
+
+template <typename S>
+std::string describe(const DiskPairCase<S>& c) {
+  std::ostringstream out;
+  out << std::setprecision(17) << c.name << ": r1=" << double(c.r1) << " c1=["
+      << c.X_W1.translation().transpose().template cast<double>() << "] R1=["
+      << c.X_W1.linear().template cast<double>().format(
+             Eigen::IOFormat(17, Eigen::DontAlignCols, ",", ";"))
+      << "] r2=" << double(c.r2) << " c2=["
+      << c.X_W2.translation().transpose().template cast<double>() << "] R2=["
+      << c.X_W2.linear().template cast<double>().format(
+             Eigen::IOFormat(17, Eigen::DontAlignCols, ",", ";"))
+      << "]";
+  return out.str();
+}
+
+/// Collects failures of one check, prints the first few with full detail.
+class FailureLog {
+ public:
+  explicit FailureLog(std::string check) : check_(std::move(check)) {}
+  void add(const std::string& message) {
+    if (count_ < kMaxReportedFailures) ADD_FAILURE() << check_ << ": " << message;
+    ++count_;
+  }
+  ~FailureLog() {
+    EXPECT_EQ(count_, 0) << check_ << ": " << count_ << " failing cases in total";
+  }
+
+ private:
+  std::string check_;
+  int count_ = 0;
+};
+
+template <typename S>
+struct ReferencedCase {
+  DiskPairCase<S> pair;
+  ReferenceResult reference;
+  RefDisk disk1, disk2;
+  double scale;
+};
+
+template <typename S>
+std::vector<ReferencedCase<S>> referencedFamily(Family family, int count) {
+  std::vector<ReferencedCase<S>> out;
+  for (const DiskPairCase<S>& c : fcl_disk_families::makeFamily<S>(family, count, kSeed)) {
+    ReferencedCase<S> rc{c, {}, fcl_disk_reference::makeRefDisk(c.X_W1, c.r1),
+                         fcl_disk_reference::makeRefDisk(c.X_W2, c.r2),
+                         fcl_disk_families::sceneScale(c)};
+    rc.reference = fcl_disk_reference::referenceDiskDistance(rc.disk1, rc.disk2);
+    out.push_back(rc);
+  }
+  return out;
+}
+
+template <typename S>
+Vector3R toReal(const fcl::Vector3<S>& v) {
+  return v.template cast<Real>();
+}
+
+/// Checks one solver result against the reference: distance within
+/// distance_tolerance, both points on their disks and |p - q| == distance within
+/// distance_tolerance plus world_rounding.
+template <typename S>
+void checkAgainstReference(const ReferencedCase<S>& rc, const fcl_disk::DiskDistanceResult<S>& r,
+                           double distance_tolerance, double world_rounding,
+                           FailureLog* distance_log, FailureLog* points_log,
+                           FailureLog* consistency_log, FailureLog* certificate_log) {
+  const double expected = double(rc.reference.distance);
+  const double got = double(r.distance);
+  if (!(std::fabs(got - expected) <= distance_tolerance)) {
+    std::ostringstream m;
+    m << std::setprecision(17) << "expected " << expected << " got " << got << " (error "
+      << (got - expected) / rc.scale << " * scale, tolerance " << distance_tolerance / rc.scale
+      << " * scale; reference method " << fcl_disk_reference::referenceMethodName(rc.reference.method)
+      << ") " << describe(rc.pair);
+    distance_log->add(m.str());
+  }
+  const double point_tolerance = distance_tolerance + world_rounding;
+  const double off1 = double(fcl_disk_reference::referencePointToDisk(toReal<S>(r.p_W1), rc.disk1));
+  const double off2 = double(fcl_disk_reference::referencePointToDisk(toReal<S>(r.p_W2), rc.disk2));
+  if (!(off1 <= point_tolerance && off2 <= point_tolerance)) {
+    std::ostringstream m;
+    m << std::setprecision(17) << "p_W1 is " << off1 << " from disk 1, p_W2 is " << off2
+      << " from disk 2 (tolerance " << point_tolerance << ") " << describe(rc.pair);
+    points_log->add(m.str());
+  }
+  const double pair_length = double((toReal<S>(r.p_W2) - toReal<S>(r.p_W1)).norm());
+  if (!(std::fabs(pair_length - got) <= distance_tolerance + 2 * world_rounding)) {
+    std::ostringstream m;
+    m << std::setprecision(17) << "|p_W2 - p_W1| = " << pair_length << " but distance = " << got
+      << " " << describe(rc.pair);
+    consistency_log->add(m.str());
+  }
+  // The solver's certificate must be a valid lower bound on the true distance.
+  if (!(double(r.lower_bound) <= expected + distance_tolerance)) {
+    std::ostringstream m;
+    m << std::setprecision(17) << "lower_bound " << double(r.lower_bound)
+      << " exceeds the reference distance " << expected << " " << describe(rc.pair);
+    certificate_log->add(m.str());
+  }
+}
+
+class FamilyTest : public ::testing::TestWithParam<Family> {};
+
+std::string familyParamName(const ::testing::TestParamInfo<Family>& info) {
+  return fcl_disk_families::familyName(info.param);
+}
+
+// ---- the reference against constructions -------------------------------------
+
+TEST_P(FamilyTest, ReferenceMatchesConstructionAndCertifiesItself) {
+  FailureLog known_log("reference vs constructed distance");
+  FailureLog gap_log("reference certificate gap");
+  for (const auto& rc : referencedFamily<double>(GetParam(), kDoubleCasesPerFamily)) {
+    const ReferenceResult& ref = rc.reference;
+    if (rc.pair.hasKnownDistance()) {
+      const double err = double(std::fabs(ref.distance - rc.pair.known_distance));
+      const double tol = fcl_disk_families::poseRoundingBound(rc.pair) +
+                         kReferenceRelativeTolerance * rc.scale;
+      if (!(err <= tol)) {
+        std::ostringstream m;
+        m << std::setprecision(21) << "known " << rc.pair.known_distance << " reference "
+          << ref.distance << " (tolerance " << tol << ") " << describe(rc.pair);
+        known_log.add(m.str());
+      }
+    }
+    if (!(double(ref.certifiedGap()) <= kReferenceCertificateTolerance * rc.scale &&
+          double(ref.certifiedGap()) >= -kReferenceRelativeTolerance * rc.scale)) {
+      std::ostringstream m;
+      m << "gap " << double(ref.certifiedGap()) / rc.scale << " * scale " << describe(rc.pair);
+      gap_log.add(m.str());
+    }
+  }
+}
+
+// ---- the exact solver ---------------------------------------------------------
+
+TEST_P(FamilyTest, ExactDoubleMatchesReference) {
+  FailureLog distance_log("exact<double> distance");
+  FailureLog points_log("exact<double> points on disks");
+  FailureLog consistency_log("exact<double> |p - q| == distance");
+  FailureLog certificate_log("exact<double> lower_bound <= distance");
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (const auto& rc : referencedFamily<double>(GetParam(), kDoubleCasesPerFamily)) {
+    const auto r = fcl_disk::exactDiskDistance<double>(rc.pair.r1, rc.pair.X_W1, rc.pair.r2,
+                                                       rc.pair.X_W2);
+    checkAgainstReference(rc, r, kDoubleRelativeTolerance * rc.scale,
+                          kWorldRoundingEps * eps * worldMagnitude(rc.pair), &distance_log,
+                          &points_log, &consistency_log, &certificate_log);
+  }
+}
+
+TEST_P(FamilyTest, ExactFloatMatchesReference) {
+  FailureLog distance_log("exact<float> distance");
+  FailureLog points_log("exact<float> points on disks");
+  FailureLog consistency_log("exact<float> |p - q| == distance");
+  FailureLog certificate_log("exact<float> lower_bound <= distance");
+  const double eps = std::numeric_limits<float>::epsilon();
+  for (const auto& rc : referencedFamily<float>(GetParam(), kFloatCasesPerFamily)) {
+    const auto r =
+        fcl_disk::exactDiskDistance<float>(rc.pair.r1, rc.pair.X_W1, rc.pair.r2, rc.pair.X_W2);
+    checkAgainstReference(rc, r, kFloatEpsMultiple * eps * rc.scale,
+                          kWorldRoundingEps * eps * worldMagnitude(rc.pair), &distance_log,
+                          &points_log, &consistency_log, &certificate_log);
+  }
+}
+
+// ---- the 1994 algorithm ---------------------------------------------------------
+
+// The 1994 algorithm returns distance = |p_W2 - p_W1| of its points AFTER they
+// are stored in world coordinates (its documented contract), so its distance
+// carries the world-coordinate rounding of two points on top of the solver
+// tolerance: 2 kWorldRoundingEps eps M. In float at 1e6 from the origin that is
+// ~0.5, which is what float can represent there, not an algorithmic error.
+template <typename S>
+double almohamadSelimTolerance(const ReferencedCase<S>& rc, double relative_tolerance) {
+  const double eps = std::numeric_limits<S>::epsilon();
+  return relative_tolerance * rc.scale + 2 * kWorldRoundingEps * eps * worldMagnitude(rc.pair);
+}
+
+TEST_P(FamilyTest, AlmohamadSelimIsAnUpperBoundAndExactWhereLemma1Holds) {
+  const Family family = GetParam();
+  // Lemma 1 is exact (to rounding) on coaxial stacks and coplanar pairs.
+  const bool exact_family = family == Family::coaxial || family == Family::coplanar;
+  FailureLog below_log("Almohamad-Selim below the true distance");
+  FailureLog exact_log("Almohamad-Selim not exact on a Lemma-1 family");
+  for (const auto& rc : referencedFamily<double>(family, kDoubleCasesPerFamily)) {
+    const auto r = fcl_disk::almohamadSelimDiskDistance<double>(rc.pair.r1, rc.pair.X_W1,
+                                                                rc.pair.r2, rc.pair.X_W2);
+    const double expected = double(rc.reference.distance);
+    const double tol = almohamadSelimTolerance(rc, kDoubleRelativeTolerance);
+    std::ostringstream m;
+    m << std::setprecision(17) << "reference " << expected << " got " << double(r.distance)
+      << " (tolerance " << tol << ") " << describe(rc.pair);
+    if (!(double(r.distance) >= expected - tol)) below_log.add(m.str());
+    if (exact_family && !(std::fabs(double(r.distance) - expected) <= tol)) exact_log.add(m.str());
+  }
+}
+
+TEST_P(FamilyTest, AlmohamadSelimFloatIsAnUpperBound) {
+  FailureLog below_log("Almohamad-Selim<float> below the true distance");
+  const double eps = std::numeric_limits<float>::epsilon();
+  for (const auto& rc : referencedFamily<float>(GetParam(), kFloatCasesPerFamily)) {
+    const auto r = fcl_disk::almohamadSelimDiskDistance<float>(rc.pair.r1, rc.pair.X_W1,
+                                                               rc.pair.r2, rc.pair.X_W2);
+    const double expected = double(rc.reference.distance);
+    const double tol = almohamadSelimTolerance(rc, kFloatEpsMultiple * eps);
+    if (!(double(r.distance) >= expected - tol)) {
+      std::ostringstream m;
+      m << std::setprecision(17) << "reference " << expected << " got " << double(r.distance)
+        << " (tolerance " << tol << ") " << describe(rc.pair);
+      below_log.add(m.str());
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFamilies, FamilyTest,
+                         ::testing::ValuesIn(fcl_disk_families::allFamilies()), familyParamName);
+
+// ---- the reference against hand-derived closed forms --------------------------
+
+/// A disk with the given centre and normal (any in-plane frame: a disk is
+/// symmetric about its normal).
+RefDisk diskWithNormal(const Vector3R& centre, const Vector3R& normal, Real radius) {
+  const Vector3R n = normal.normalized();
+  const Vector3R helper = std::fabs(n.x()) < 0.6L ? Vector3R::UnitX() : Vector3R::UnitY();
+  const Vector3R u = (helper - n.dot(helper) * n).normalized();
+  Matrix3R R;
+  R.col(0) = u;
+  R.col(1) = n.cross(u);
+  R.col(2) = n;
+  return fcl_disk_reference::makeRefDisk(centre, R, radius);
+}
+
+/// The same pair under a rigid motion (rotation from an axis-angle, then a
+/// translation), which must not change the distance.
+std::pair<RefDisk, RefDisk> moved(const RefDisk& a, const RefDisk& b, const Vector3R& axis,
+                                  Real angle, const Vector3R& shift) {
+  const Matrix3R Q = Eigen::AngleAxis<Real>(angle, axis.normalized()).toRotationMatrix();
+  auto move = [&](const RefDisk& d) {
+    Matrix3R R;
+    R.col(0) = Q * d.u;
+    R.col(1) = Q * d.v;
+    R.col(2) = Q * d.n;
+    return fcl_disk_reference::makeRefDisk(Q * d.centre + shift, R, d.radius);
+  };
+  return {move(a), move(b)};
+}
+
+/// Asserts the reference on (a, b), on (b, a) and on a moved copy.
+void expectReferenceDistance(const RefDisk& a, const RefDisk& b, Real expected,
+                             const std::string& what) {
+  const Real tolerance = kReferenceRelativeTolerance *
+                         std::max(Real(1), a.radius + b.radius + (a.centre - b.centre).norm());
+  const auto check = [&](const RefDisk& x, const RefDisk& y, const std::string& variant) {
+    const ReferenceResult r = fcl_disk_reference::referenceDiskDistance(x, y);
+    EXPECT_LE(std::fabs(r.distance - expected), tolerance)
+        << what << " (" << variant << "): expected " << double(expected) << " got "
+        << double(r.distance);
+    EXPECT_LE(std::fabs(r.certifiedGap()), tolerance) << what << " (" << variant << ") gap";
+    EXPECT_LE(std::fabs((r.p2 - r.p1).norm() - r.distance), tolerance) << what;
+    EXPECT_LE(fcl_disk_reference::referencePointToDisk(r.p1, x), tolerance) << what;
+    EXPECT_LE(fcl_disk_reference::referencePointToDisk(r.p2, y), tolerance) << what;
+  };
+  check(a, b, "as given");
+  check(b, a, "swapped");
+  const auto m = moved(a, b, Vector3R(0.3L, -1.1L, 0.7L), 2.1L, Vector3R(5, -7, 3));
+  check(m.first, m.second, "moved");
+}
+
+const Vector3R kZ = Vector3R::UnitZ();
+
+TEST(ReferenceClosedForms, CoaxialIsTheHeight) {
+  // Coaxial: projections are concentric, so the faces face each other: d = |h|.
+  for (Real h : {Real(0), Real(1e-12), Real(0.3), Real(7)}) {
+    expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1), diskWithNormal({0, 0, h}, -kZ, 2.5L),
+                            h, "coaxial h=" + std::to_string(double(h)));
+  }
+}
+
+TEST(ReferenceClosedForms, ParallelOffsetDisks) {
+  // Parallel planes h apart, centres D apart in-plane: the in-plane gap is
+  // max(0, D - r1 - r2), so d = sqrt(h^2 + max(0, D - r1 - r2)^2).
+  const Real r1 = 1, r2 = 1.5L;
+  for (Real D : {Real(0.4), Real(2.5), Real(3.5), Real(10)}) {
+    for (Real h : {Real(0), Real(0.2), Real(3)}) {
+      const Real gap = std::max(Real(0), D - r1 - r2);
+      expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, r1), diskWithNormal({D, 0, h}, kZ, r2),
+                              std::sqrt(h * h + gap * gap),
+                              "parallel D=" + std::to_string(double(D)) +
+                                  " h=" + std::to_string(double(h)));
+    }
+  }
+}
+
+TEST(ReferenceClosedForms, CoplanarApartTouchingOverlapping) {
+  const Real r1 = 1, r2 = 0.5L;
+  const Real D = std::sqrt(Real(10));  // centre (3, 1, 0)
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, r1), diskWithNormal({3, 1, 0}, kZ, r2),
+                          D - r1 - r2, "coplanar apart");
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, r1), diskWithNormal({1.5L, 0, 0}, kZ, r2),
+                          0, "coplanar touching");
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, r1), diskWithNormal({0.2L, 0, 0}, -kZ, r2),
+                          0, "coplanar inside");
+}
+
+TEST(ReferenceClosedForms, FactsCounterexamples) {
+  // facts.md section 1. A: K2's highest rim point (0, -2/sqrt5, -1/2 + 1/sqrt5)
+  // lies over K1's interior: d = 1/2 - 1/sqrt5.
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1),
+                          diskWithNormal({0, 0, -0.5L}, Vector3R(0, 1, 2), 1),
+                          0.5L - 1 / std::sqrt(Real(5)), "counterexample A");
+  // B: known to 6 digits (0.062393); rim-rim, so no closed form. Check the
+  // digits and that the certificate closes the gap.
+  const RefDisk b1 = diskWithNormal({0, 0, 0}, Vector3R::UnitY(), 1);
+  const RefDisk b2 = diskWithNormal({-1.5L, 0, 0}, Vector3R(1, 0, 1), 1);
+  const ReferenceResult r = fcl_disk_reference::referenceDiskDistance(b1, b2);
+  EXPECT_NEAR(double(r.distance), 0.062393, 5e-7);
+  EXPECT_LE(std::fabs(double(r.certifiedGap())), kReferenceRelativeTolerance * double(r.scale));
+}
+
+TEST(ReferenceClosedForms, PerpendicularDisks) {
+  // Disk 2 vertical (normal x), standing over disk 1's interior at height g.
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1),
+                          diskWithNormal({0.3L, 0.2L, 0.7L + 0.25L}, Vector3R::UnitX(), 0.7L),
+                          0.25L, "perpendicular over face");
+  // Disk 2 vertical beside disk 1, facing it: rim point (1, 0, 0) to face: X - r1.
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1),
+                          diskWithNormal({1.75L, 0, 0.1L}, Vector3R::UnitX(), 0.5L), 0.75L,
+                          "perpendicular beside");
+  // Rim-rim in the symmetry plane y = 0: disk 2 in that plane at (X, 0, Z);
+  // p = (r1, 0, 0), q = c2 + r2 (p - c2)/|p - c2| (q_x > r1 here), so
+  // d = sqrt((X - r1)^2 + Z^2) - r2.
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1),
+                          diskWithNormal({2.5L, 0, 1}, Vector3R::UnitY(), 1),
+                          std::sqrt(Real(1.5) * 1.5L + 1) - 1, "perpendicular rim-rim");
+  // Chain link: disk 2 in the plane y = 0 through disk 1's rim: they intersect.
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1),
+                          diskWithNormal({1, 0, 0}, Vector3R::UnitY(), 1), 0, "interlocked");
+}
+
+TEST(ReferenceClosedForms, NearParallelTiltDownTo1e12) {
+  // Disk 2 (r 1, centre (0.5, 0, h)) has normal (-sin t, 0, cos t): its plane
+  // rises along (cos t, 0, sin t), so its lowest rim point is
+  // c2 - (cos t, 0, sin t) = (0.5 - cos t, 0, h - sin t), over disk 1's
+  // interior; with h > sin t all of disk 2 is above: d = h - sin t.
+  for (Real tilt : {Real(1e-12), Real(1e-9), Real(1e-5)}) {
+    const Real h = 1e-9L + 2 * std::sin(tilt);
+    const Vector3R n(-std::sin(tilt), 0, std::cos(tilt));
+    expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1), diskWithNormal({0.5L, 0, h}, n, 1),
+                            h - std::sin(tilt), "tilt " + std::to_string(double(tilt)));
+  }
+}
+
+TEST(ReferenceClosedForms, ExtremeRadiusRatioAndSeparation) {
+  // A disk of radius 1e-6 1e6 above a disk of radius 1e6, over its interior.
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1e6L),
+                          diskWithNormal({3, 4, 1e6L}, kZ, 1e-6L), 1e6L, "ratio 1e12 stacked");
+  // Coplanar, ~1e-12 apart at radius 1e6: D - r1 - r2 (written so that the
+  // expected value is the exact long-double gap of the stored centre).
+  const Real centre_x = 1e6L + 1 + 1e-12L;
+  expectReferenceDistance(diskWithNormal({0, 0, 0}, kZ, 1e6L), diskWithNormal({centre_x, 0, 0}, kZ, 1),
+                          (centre_x - 1e6L) - 1, "coplanar 1e-12 apart at r 1e6");
+}
+
+}  // namespace
