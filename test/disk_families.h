@@ -40,18 +40,60 @@ using Real = long double;
 using Vector3R = Eigen::Matrix<Real, 3, 1>;
 using Matrix3R = Eigen::Matrix<Real, 3, 3>;
 
+/// The families. "Exact" below is in the family frame; the stored poses are
+/// within poseRoundingBound() of it (see the file comment) unless stated.
 enum class Family {
-  random,            ///< centres within 3, radii 0.2-1.5, random orientations.
-  near_parallel,     ///< tilt 1e-12..1e-3 rad: face over face, rim-rim beside, crossing.
-  coplanar,          ///< apart, touching, overlapping, one inside the other (incl. concentric).
-  coaxial,           ///< parallel (or opposite) normals on a common axis, incl. concentric coplanar.
-  touching,          ///< distance 0 by construction: rim on face, rim on rim.
-  interlocked,       ///< chain link: each disk crosses the other's plane inside the other.
-  perpendicular,     ///< normals at 90 degrees, separated (face, rim-rim, beside).
-  rim_rim,           ///< the optimum is rim-rim by construction (KKT conditions).
-  radius_ratio,      ///< r2 / r1 in 1e-6..1e6, log-uniform.
-  far_from_origin,   ///< the random family translated by up to 1e6.
-  separation_scale,  ///< fixed shapes at separations 1e-12..1e6, log-uniform.
+  /// Centres uniform in a ball of radius 3, radii 0.2-1.5, uniform random
+  /// orientations (some pairs intersect). known_distance: none.
+  random,
+  /// Tilt 1e-12..1e-3 rad (log-uniform) between the normals, in three sub-kinds:
+  /// "face" (projections overlap, disk 2's lowest rim point over disk 1's
+  /// interior at d = 1e-10..1, known), "rim_rim" (projections apart, KKT
+  /// construction, known), "crossing" (disk 2's projection inside disk 1 and
+  /// plane 1 cutting disk 2 within +-0.9 of its height range: distance 0). The
+  /// stored tilt matches the nominal one to ~eps absolute; in float, tilts below
+  /// ~1e-7 are swamped by rounding (the stored disks are parallel or tilted by
+  /// rounding), which the known distances' rounding bound accounts for.
+  near_parallel,
+  /// Same plane: "apart" (gap 1e-9..3), "touching" (D = r1 + r2), "overlapping",
+  /// "inside" and "concentric". Normals bit-identical or exact negatives;
+  /// centres in the common plane to the rounding of their coordinates.
+  coplanar,
+  /// Parallel or opposite normals (bit-identical / exact negatives), centres on
+  /// the common axis (to rounding), height 0 (concentric coplanar) or +-1e-9..3;
+  /// known_distance = |h|.
+  coaxial,
+  /// Distance 0: "rim_on_face" (disk 2's extreme rim point on disk 1's face,
+  /// tilt >= 0.05 rad) and "rim_on_rim" (disk 2's plane contains rim 1's
+  /// tangent at the contact point, so the disks meet there only). After rounding
+  /// the stored disks touch, overlap or miss by up to poseRoundingBound().
+  touching,
+  /// Chain link: disk 2's plane contains a chord line of disk 1 and disk 2's
+  /// chord on it straddles disk 1's rim (each disk crosses the other's plane
+  /// inside the other); normals exactly perpendicular ("perpendicular") or
+  /// 0-0.4 rad off ("tilted"). The chords overlap by >= 0.2 of disk 2's chord, so
+  /// the stored disks intersect too: distance exactly 0.
+  interlocked,
+  /// n2 . n1 = 0 (to rounding), separated: "face" (disk 2 standing over disk 1's
+  /// interior, known), "rim_rim" (KKT construction, known), "beside" (disk 2
+  /// crossing plane 1 outside disk 1, or not reaching it; no known distance).
+  perpendicular,
+  /// Optimum rim-rim by construction: p on rim 1, w in disk 1's normal cone at p
+  /// with a positive radial part, q = p + d w, disk 2 placed so -w is in its
+  /// normal cone at q (mutual KKT => optimal); d = 1e-4..2, known.
+  rim_rim,
+  /// r2 / r1 = 1e-6..1e6 (log-uniform; slots swapped half of the time): KKT
+  /// rim-rim and face constructions (known, d = 1e-6..1 times the larger
+  /// radius) and random placements within 1.3 (r1 + r2).
+  radius_ratio,
+  /// The random family translated by up to 1e6 (half at 0.5e6..1e6, half
+  /// log-uniform 1..1e6). The centres are stored rounded to ulp(1e6) = 1.2e-10
+  /// (double) / 0.06 (float): the disks are those stored poses.
+  far_from_origin,
+  /// Three fixed shapes (rim-rim, rim over face, parallel faces; radii 1 and
+  /// 0.75) at separations 1e-12..1e6 (log-uniform), known. In float,
+  /// separations below ~1e-6 are below the pose rounding.
+  separation_scale,
 };
 
 inline const std::vector<Family>& allFamilies() {

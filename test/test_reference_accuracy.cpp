@@ -296,6 +296,39 @@ TEST_P(FamilyTest, AlmohamadSelimFloatIsAnUpperBound) {
 INSTANTIATE_TEST_SUITE_P(AllFamilies, FamilyTest,
                          ::testing::ValuesIn(fcl_disk_families::allFamilies()), familyParamName);
 
+// ---- the generators themselves --------------------------------------------------
+
+TEST(DiskFamilies, DeterministicAndPrefixStable) {
+  // Same (family, seed) => same cases; a longer list starts with the shorter one.
+  for (Family family : fcl_disk_families::allFamilies()) {
+    const auto short_list = fcl_disk_families::makeFamily<double>(family, 20, 7);
+    const auto long_list = fcl_disk_families::makeFamily<double>(family, 40, 7);
+    ASSERT_EQ(short_list.size(), 20u);
+    for (int i = 0; i < 20; ++i) {
+      EXPECT_EQ(short_list[i].name, long_list[i].name);
+      EXPECT_TRUE(short_list[i].X_W1.matrix() == long_list[i].X_W1.matrix()) << short_list[i].name;
+      EXPECT_TRUE(short_list[i].X_W2.matrix() == long_list[i].X_W2.matrix()) << short_list[i].name;
+      EXPECT_EQ(short_list[i].r1, long_list[i].r1);
+    }
+  }
+}
+
+template <typename S>
+void expectBitIdenticalNormals(Family family) {
+  for (const auto& c : fcl_disk_families::makeFamily<S>(family, 100, kSeed)) {
+    const auto n1 = c.X_W1.linear().col(2);
+    const auto n2 = c.X_W2.linear().col(2);
+    EXPECT_TRUE(n1 == n2 || n1 == -n2) << c.name;
+  }
+}
+
+TEST(DiskFamilies, CoplanarAndCoaxialNormalsAreBitIdentical) {
+  expectBitIdenticalNormals<double>(Family::coplanar);
+  expectBitIdenticalNormals<double>(Family::coaxial);
+  expectBitIdenticalNormals<float>(Family::coplanar);
+  expectBitIdenticalNormals<float>(Family::coaxial);
+}
+
 // ---- the reference against hand-derived closed forms --------------------------
 
 /// A disk with the given centre and normal (any in-plane frame: a disk is

@@ -84,8 +84,17 @@ run_step("configure the consumer project with find_package(fcl_disk 0.1 CONFIG R
     -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON
     -DCONSUMER_FCL_DISK_VERSION=0.1
     -DFCL_DISK_EXPECTED_PREFIX=${PREFIX})
-run_step("build the consumer project"
-  ${CMAKE_COMMAND} --build ${CONSUMER_BUILD} --config ${CONFIG} --parallel ${JOBS})
+# FCL's headers make the compiler verbose; the build log goes to a file, and its
+# tail is shown if the build fails.
+message(STATUS "consumer test: build the consumer project (log: ${WORK_DIR}/build.log)")
+execute_process(
+  COMMAND ${CMAKE_COMMAND} --build ${CONSUMER_BUILD} --config ${CONFIG} --parallel ${JOBS}
+  RESULT_VARIABLE rc OUTPUT_FILE ${WORK_DIR}/build.log ERROR_FILE ${WORK_DIR}/build.log)
+if(NOT rc EQUAL 0)
+  execute_process(COMMAND tail -n 150 ${WORK_DIR}/build.log)
+  message(FATAL_ERROR "consumer test: building the consumer project FAILED (exit ${rc}); "
+                      "full log: ${WORK_DIR}/build.log")
+endif()
 
 # 4. Run every way of linking and loading; report all, then fail if any failed.
 #    LD_LIBRARY_PATH/LD_PRELOAD are cleared so that only the binaries' RUNPATHs
@@ -105,14 +114,25 @@ foreach(run IN LISTS runs)
     set(path ${CONSUMER_BUILD}/${CONFIG}/${exe})
   endif()
   string(REPLACE ";" " " shown "${run}")
-  message(STATUS "consumer test: running ${shown}")
+  string(REPLACE ";" "_" log_name "${run}")
+  set(log ${WORK_DIR}/${log_name}.log)
+  message(STATUS "consumer test: running ${shown} (full log: ${log})")
   execute_process(
     COMMAND ${CMAKE_COMMAND} -E env --unset=LD_LIBRARY_PATH --unset=LD_PRELOAD ${path} ${args}
-    RESULT_VARIABLE rc)
+    RESULT_VARIABLE rc OUTPUT_FILE ${log} ERROR_FILE ${log})
+  # One line per check is in the log; show the failures, the bindings and summaries.
+  file(STRINGS ${log} passed REGEX "^\\[PASS\\]")
+  list(LENGTH passed n_passed)
+  file(STRINGS ${log} shown_lines REGEX "^(\\[FAIL\\]|\\[info\\]|====|consumer_|planner_plugin|usage)")
+  foreach(line IN LISTS shown_lines)
+    message("  ${line}")
+  endforeach()
   if(rc EQUAL 0)
-    message(STATUS "consumer test: ${shown}: passed")
+    message(STATUS "consumer test: ${shown}: passed (${n_passed} checks)")
   else()
-    message(STATUS "consumer test: ${shown}: FAILED (exit ${rc})")
+    message("  ... last lines of ${log}:")
+    execute_process(COMMAND tail -n 5 ${log})
+    message(STATUS "consumer test: ${shown}: FAILED (exit ${rc}, ${n_passed} checks passed)")
     list(APPEND failed "${shown} (exit ${rc})")
   endif()
 endforeach()

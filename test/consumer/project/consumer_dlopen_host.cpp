@@ -45,11 +45,15 @@ int main(int argc, char** argv) {
       std::printf("consumer_dlopen_host: plugin entry points missing: %s\n", dlerror());
       return 3;
     }
-    failures += run_checks(("plugin code, plugin loaded with " + mode).c_str(), &baseline);
-    failures += consumer::runAllChecks("host code on plugin disks, plugin loaded with " + mode,
-                                       *get_api(), baseline);
-    std::printf("consumer_dlopen_host (%s): %s\n", mode.c_str(),
-                failures == 0 ? "ALL CHECKS PASSED" : "FAILED");
+    const int plugin_failures =
+        run_checks(("plugin code, plugin loaded with " + mode).c_str(), &baseline);
+    const int host_failures = consumer::runAllChecks(
+        "host code on plugin disks, plugin loaded with " + mode, *get_api(), baseline);
+    failures += plugin_failures + host_failures;
+    std::printf("consumer_dlopen_host (%s): %s (queries by plugin code: %d failure(s), by "
+                "host code: %d failure(s))\n",
+                mode.c_str(), failures == 0 ? "ALL CHECKS PASSED" : "FAILED", plugin_failures,
+                host_failures);
     // The plugin stays loaded: its Disks' vtables live there and FCL's tables
     // point into fcl_disk.
     return failures == 0 ? 0 : 1;

@@ -1,0 +1,224 @@
+// Google Benchmark suite for fcl_disk's disk-disk solvers (built with
+// -DFCL_DISK_BUILD_BENCHMARKS=ON; not part of the test run).
+//
+// Every benchmark cycles through the same fixed pool of kPoolSize random pairs
+// (test/disk_families.h, family "random", fixed seed), one pair per iteration,
+// so the branch predictor cannot learn a single case. Names:
+//   direct/<solver>/<float|double>        the solver called directly;
+//   fcl_distance/<solver>/<float|double>  the same through fcl::distance on Disk
+//                                         CollisionObjects (method switched with
+//                                         registerDiskFunctions): minus direct =
+//                                         the hook's dispatch overhead;
+//   fcl_collide/disk/<float|double>       intersectDisks through fcl::collide;
+//   fcl_distance/gjk_<libccd|indep>_cylinder_h<h>/double
+//                                         FCL's GJK on Cylinder(r, h), default
+//                                         request (distance_tolerance 1e-6);
+//   fcl_distance/sphere_sphere/double     FCL's own closed-form sphere-sphere
+//                                         entry: what FCL's dispatch alone costs.
+// Run with repetitions and read the median aggregates, e.g.
+//   bench_disk_distance --benchmark_repetitions=10
+//     --benchmark_display_aggregates_only=true
+#include <benchmark/benchmark.h>
+
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl_disk/fcl_disk.h>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "disk_families.h"
+
+namespace {
+
+namespace fam = fcl_disk_families;
+
+constexpr std::size_t kPoolSize = 512;  // a power of two: index = i & (kPoolSize - 1)
+constexpr std::uint64_t kSeed = 20240601;
+const double kHeights[] = {1e-2, 1e-4, 1e-6};
+const char* const kHeightNames[] = {"1e-2", "1e-4", "1e-6"};
+
+template <typename S>
+struct Pool {
+  std::vector<fam::DiskPairCase<S>> cases;
+  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> disk1, disk2;
+  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> cyl1[3], cyl2[3];
+  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> sphere1, sphere2;
+};
+
+template <typename S>
+const Pool<S>& pool() {
+  static const Pool<S> instance = [] {
+    Pool<S> p;
+    p.cases = fam::makeFamily<S>(fam::Family::random, kPoolSize, kSeed);
+    for (const auto& c : p.cases) {
+      p.disk1.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl_disk::Disk<S>>(c.r1), c.X_W1));
+      p.disk2.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl_disk::Disk<S>>(c.r2), c.X_W2));
+      for (int h = 0; h < 3; ++h) {
+        p.cyl1[h].push_back(std::make_unique<fcl::CollisionObject<S>>(
+            std::make_shared<fcl::Cylinder<S>>(c.r1, S(kHeights[h])), c.X_W1));
+        p.cyl2[h].push_back(std::make_unique<fcl::CollisionObject<S>>(
+            std::make_shared<fcl::Cylinder<S>>(c.r2, S(kHeights[h])), c.X_W2));
+      }
+      p.sphere1.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl::Sphere<S>>(c.r1), c.X_W1));
+      p.sphere2.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl::Sphere<S>>(c.r2), c.X_W2));
+    }
+    return p;
+  }();
+  return instance;
+}
+
+void finish(benchmark::State& state) {
+  state.SetItemsProcessed(state.iterations());
+  state.counters["pool"] = kPoolSize;
+}
+
+// ---- the solvers alone ----------------------------------------------------
+
+template <typename S>
+void directExact(benchmark::State& state) {
+  const auto& cases = pool<S>().cases;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i++ & (kPoolSize - 1)];
+    benchmark::DoNotOptimize(fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2));
+  }
+  finish(state);
+}
+
+template <typename S>
+void directAlmohamadSelim(benchmark::State& state) {
+  const auto& cases = pool<S>().cases;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i++ & (kPoolSize - 1)];
+    benchmark::DoNotOptimize(fcl_disk::almohamadSelimDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2));
+  }
+  finish(state);
+}
+
+template <typename S>
+void directIntersect(benchmark::State& state) {
+  const auto& cases = pool<S>().cases;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& c = cases[i++ & (kPoolSize - 1)];
+    fcl_disk::DiskContact<S> contact;
+    benchmark::DoNotOptimize(fcl_disk::intersectDisks(c.r1, c.X_W1, c.r2, c.X_W2, &contact));
+    benchmark::DoNotOptimize(contact);
+  }
+  finish(state);
+}
+
+// ---- through FCL's dispatch -------------------------------------------------
+
+template <typename S>
+void fclDistanceDisk(benchmark::State& state, fcl_disk::DiskDistanceMethod method) {
+  const auto& p = pool<S>();
+  fcl_disk::registerDiskFunctions(method);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPoolSize - 1);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> result;
+    benchmark::DoNotOptimize(fcl::distance(p.disk1[k].get(), p.disk2[k].get(), request, result));
+    benchmark::DoNotOptimize(result);
+  }
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+  finish(state);
+}
+
+template <typename S>
+void fclCollideDisk(benchmark::State& state) {
+  const auto& p = pool<S>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPoolSize - 1);
+    fcl::CollisionRequest<S> request;
+    fcl::CollisionResult<S> result;
+    benchmark::DoNotOptimize(fcl::collide(p.disk1[k].get(), p.disk2[k].get(), request, result));
+    benchmark::DoNotOptimize(result);
+  }
+  finish(state);
+}
+
+template <typename S>
+void fclDistanceGjkCylinder(benchmark::State& state, fcl::GJKSolverType solver, int height) {
+  const auto& p = pool<S>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPoolSize - 1);
+    fcl::DistanceRequest<S> request;
+    request.gjk_solver_type = solver;
+    fcl::DistanceResult<S> result;
+    benchmark::DoNotOptimize(
+        fcl::distance(p.cyl1[height][k].get(), p.cyl2[height][k].get(), request, result));
+    benchmark::DoNotOptimize(result);
+  }
+  finish(state);
+}
+
+template <typename S>
+void fclDistanceSphereSphere(benchmark::State& state) {
+  const auto& p = pool<S>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPoolSize - 1);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> result;
+    benchmark::DoNotOptimize(
+        fcl::distance(p.sphere1[k].get(), p.sphere2[k].get(), request, result));
+    benchmark::DoNotOptimize(result);
+  }
+  finish(state);
+}
+
+template <typename S>
+void registerScalar(const std::string& scalar) {
+  using M = fcl_disk::DiskDistanceMethod;
+  benchmark::RegisterBenchmark(("direct/exact/" + scalar).c_str(), directExact<S>);
+  benchmark::RegisterBenchmark(("direct/almohamad_selim/" + scalar).c_str(),
+                               directAlmohamadSelim<S>);
+  benchmark::RegisterBenchmark(("direct/intersect/" + scalar).c_str(), directIntersect<S>);
+  benchmark::RegisterBenchmark(("fcl_distance/exact/" + scalar).c_str(),
+                               [](benchmark::State& st) { fclDistanceDisk<S>(st, M::exact); });
+  benchmark::RegisterBenchmark(
+      ("fcl_distance/almohamad_selim/" + scalar).c_str(),
+      [](benchmark::State& st) { fclDistanceDisk<S>(st, M::almohamad_selim); });
+  benchmark::RegisterBenchmark(("fcl_collide/disk/" + scalar).c_str(), fclCollideDisk<S>);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Install the hook (and its self-test) before any timing.
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+  registerScalar<float>("float");
+  registerScalar<double>("double");
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    for (int h : {2, 1, 0}) {  // h = 1e-6 first: the variant the targets name
+      const std::string name = std::string("fcl_distance/gjk_") +
+                               (solver == fcl::GST_LIBCCD ? "libccd" : "indep") +
+                               "_cylinder_h" + kHeightNames[h] + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [solver, h](benchmark::State& st) {
+        fclDistanceGjkCylinder<double>(st, solver, h);
+      });
+    }
+  }
+  benchmark::RegisterBenchmark("fcl_distance/sphere_sphere/double",
+                               fclDistanceSphereSphere<double>);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

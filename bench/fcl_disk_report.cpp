@@ -1,0 +1,597 @@
+// fcl_disk_report: speed against error for every disk-disk solver, on the same
+// pairs, in one run.
+//
+// Solvers (all through plain fcl::distance on CollisionObjects, so FCL's dispatch
+// is included in every time):
+//   exact, almohamad_selim     Disk objects; the method is switched with
+//                              registerDiskFunctions().
+//   gjk_libccd_h<h>,           FCL 0.7's own GJK on Cylinder(r, h) for
+//   gjk_indep_h<h>             h in {1e-2, 1e-4, 1e-6}, default DistanceRequest
+//                              (distance_tolerance 1e-6) but the solver type.
+// plus, for the hook's overhead in the same run, the two disk solvers called
+// directly (exact_direct, almohamad_selim_direct; path "direct").
+//
+// Pairs: every family of test/disk_families.h (double), fixed seed. Error:
+// |d - d_ref| / max(1, r1 + r2 + |c1 - c2|), d_ref from the independent
+// long-double reference of test/reference_distance.h. FCL reports overlap of
+// the cylinders as -1 (unsigned distance); that is read as distance 0.
+//
+// Timing: for each pair and solver, the same query is repeated k times in a
+// batch timed with std::chrono::steady_clock (k chosen so a batch lasts about
+// --batch-ns, to get far above the clock's ~20 ns cost, which is measured at
+// start-up and subtracted); the pair's time is the median of --reps batches.
+// Solvers are interleaved pair by pair (rotating the order), so drifts of a
+// shared machine hit every solver alike. Repeating one query lets the branch
+// predictor learn it; bench_disk_distance cycles through a pool instead.
+//
+// Output: a markdown table on stdout (per solver and family: median and p99
+// ns/query, median and max error), the headline ratios, and in --out:
+//   report.csv        one row per (solver, family) with those figures;
+//   report_pairs.csv  one row per (pair, solver): time, distance, reference, error;
+//   report.png        time against error, log-log (bench/plot_report.py).
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl_disk/fcl_disk.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "disk_families.h"
+#include "reference_distance.h"
+
+#ifndef FCL_DISK_PLOT_SCRIPT
+#define FCL_DISK_PLOT_SCRIPT "bench/plot_report.py"
+#endif
+#ifndef FCL_DISK_DEFAULT_OUT
+#define FCL_DISK_DEFAULT_OUT "build/report"
+#endif
+
+namespace {
+
+namespace fam = fcl_disk_families;
+namespace ref = fcl_disk_reference;
+using Clock = std::chrono::steady_clock;
+using Case = fam::DiskPairCase<double>;
+
+// ---------------------------------------------------------------------------
+// Options.
+
+struct Options {
+  int pairs_per_family = 2000;
+  int reps = 5;               ///< batches per (pair, solver); the median is kept
+  double batch_ns = 2000;     ///< target duration of one batch
+  std::uint64_t seed = 20240601;
+  std::string out_dir = FCL_DISK_DEFAULT_OUT;
+  bool plot = true;
+  bool quick = false;
+};
+
+void printUsage(const char* argv0) {
+  std::printf(
+      "Usage: %s [--quick] [--out DIR] [--pairs N] [--reps R] [--batch-ns T] [--seed S] "
+      "[--no-plot]\n"
+      "Runs every disk-disk solver (exact, almohamad_selim, FCL GJK libccd/indep on\n"
+      "Cylinder(r, h), h = 1e-2, 1e-4, 1e-6) through fcl::distance on every configuration\n"
+      "family, and reports time per query against error vs a long-double reference.\n"
+      "  --quick       20 pairs per family, 3 batches: a smoke test of a few seconds\n"
+      "  --out DIR     where report.csv, report_pairs.csv and report.png go\n"
+      "                (default %s)\n"
+      "  --pairs N     pairs per family (default 2000; quick 20)\n"
+      "  --reps R      timed batches per pair and solver, median kept (default 5; quick 3)\n"
+      "  --batch-ns T  target length of one batch in ns (default 2000; quick 500)\n"
+      "  --seed S      family seed (default 20240601)\n"
+      "  --no-plot     do not run bench/plot_report.py\n",
+      argv0, FCL_DISK_DEFAULT_OUT);
+}
+
+bool parseOptions(int argc, char** argv, Options* options) {
+  bool pairs_set = false, reps_set = false, batch_set = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&](const char* name) -> const char* {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "fcl_disk_report: %s needs a value\n", name);
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (arg == "--quick") {
+      options->quick = true;
+    } else if (arg == "--out") {
+      options->out_dir = value("--out");
+    } else if (arg == "--pairs") {
+      options->pairs_per_family = std::atoi(value("--pairs"));
+      pairs_set = true;
+    } else if (arg == "--reps") {
+      options->reps = std::atoi(value("--reps"));
+      reps_set = true;
+    } else if (arg == "--batch-ns") {
+      options->batch_ns = std::atof(value("--batch-ns"));
+      batch_set = true;
+    } else if (arg == "--seed") {
+      options->seed = std::strtoull(value("--seed"), nullptr, 10);
+    } else if (arg == "--no-plot") {
+      options->plot = false;
+    } else if (arg == "--help" || arg == "-h") {
+      printUsage(argv[0]);
+      std::exit(0);
+    } else {
+      std::fprintf(stderr, "fcl_disk_report: unknown argument '%s'\n", arg.c_str());
+      printUsage(argv[0]);
+      return false;
+    }
+  }
+  if (options->quick) {
+    if (!pairs_set) options->pairs_per_family = 20;
+    if (!reps_set) options->reps = 3;
+    if (!batch_set) options->batch_ns = 500;
+  }
+  if (options->pairs_per_family < 1 || options->reps < 1 || !(options->batch_ns > 0)) {
+    std::fprintf(stderr, "fcl_disk_report: --pairs, --reps and --batch-ns must be positive\n");
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------
+// Solvers.
+
+/// One prepared pair: the case, its reference, and the objects every solver needs.
+struct PreparedPair {
+  Case c;
+  fam::Family family;
+  double reference = 0;  ///< reference distance (rounded to double)
+  double scale = 1;      ///< max(1, r1 + r2 + |c1 - c2|)
+  std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
+};
+
+const double kHeights[] = {1e-2, 1e-4, 1e-6};
+constexpr int kNumHeights = 3;
+
+enum class Kind { disk_fcl, disk_direct, gjk };
+
+struct Solver {
+  std::string name;
+  std::string path;  ///< "fcl::distance" or "direct"
+  Kind kind;
+  fcl_disk::DiskDistanceMethod method = fcl_disk::DiskDistanceMethod::exact;
+  fcl::GJKSolverType gjk = fcl::GST_LIBCCD;
+  int height_index = 0;
+};
+
+std::vector<Solver> makeSolvers() {
+  using M = fcl_disk::DiskDistanceMethod;
+  std::vector<Solver> solvers;
+  solvers.push_back({"exact", "fcl::distance", Kind::disk_fcl, M::exact});
+  solvers.push_back({"almohamad_selim", "fcl::distance", Kind::disk_fcl, M::almohamad_selim});
+  const char* heights[] = {"1e-2", "1e-4", "1e-6"};
+  for (auto gjk : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    for (int h = 0; h < kNumHeights; ++h) {
+      Solver s{std::string(gjk == fcl::GST_LIBCCD ? "gjk_libccd_h" : "gjk_indep_h") + heights[h],
+               "fcl::distance", Kind::gjk};
+      s.gjk = gjk;
+      s.height_index = h;
+      solvers.push_back(s);
+    }
+  }
+  solvers.push_back({"exact_direct", "direct", Kind::disk_direct, M::exact});
+  solvers.push_back(
+      {"almohamad_selim_direct", "direct", Kind::disk_direct, M::almohamad_selim});
+  return solvers;
+}
+
+/// One query of `solver` on `pair`; returns the distance (overlap -> 0).
+/// Selecting the disk method (registerDiskFunctions) is done by the caller,
+/// outside the timed region.
+inline double query(const Solver& solver, const PreparedPair& pair) {
+  switch (solver.kind) {
+    case Kind::disk_fcl: {
+      fcl::DistanceRequestd request;
+      fcl::DistanceResultd result;
+      fcl::distance(pair.disk1.get(), pair.disk2.get(), request, result);
+      return result.min_distance;
+    }
+    case Kind::disk_direct: {
+      const Case& c = pair.c;
+      return solver.method == fcl_disk::DiskDistanceMethod::exact
+                 ? fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance
+                 : fcl_disk::almohamadSelimDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance;
+    }
+    case Kind::gjk: {
+      fcl::DistanceRequestd request;
+      request.gjk_solver_type = solver.gjk;
+      fcl::DistanceResultd result;
+      fcl::distance(pair.cyl1[solver.height_index].get(), pair.cyl2[solver.height_index].get(),
+                    request, result);
+      return result.min_distance;
+    }
+  }
+  return std::nan("");
+}
+
+/// Keeps a value alive without a store the compiler could drop.
+template <typename T>
+inline void keep(const T& value) {
+  asm volatile("" : : "g"(&value) : "memory");
+}
+
+double nsBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::nano>(b - a).count();
+}
+
+/// Median cost of an empty steady_clock interval (subtracted from each batch).
+double measureClockOverhead() {
+  std::vector<double> samples(20001);
+  for (auto& s : samples) {
+    const auto a = Clock::now();
+    const auto b = Clock::now();
+    s = nsBetween(a, b);
+  }
+  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
+  return samples[samples.size() / 2];
+}
+
+struct Measurement {
+  double ns = 0;        ///< median ns per query over the batches
+  double distance = 0;  ///< the solver's answer (overlap -> 0)
+  double error = 0;     ///< |distance - reference| / scale
+};
+
+Measurement measure(const Solver& solver, const PreparedPair& pair, const Options& options,
+                    double clock_ns) {
+  if (solver.kind == Kind::disk_fcl) fcl_disk::registerDiskFunctions(solver.method);
+  Measurement m;
+  // First call: the answer (and warms the caches).
+  double d = query(solver, pair);
+  if (d < 0) d = 0;  // FCL's unsigned distance reports overlap as -1
+  m.distance = d;
+  m.error = std::fabs(d - pair.reference) / pair.scale;
+  // Calibrate the batch length on a second call.
+  const auto t0 = Clock::now();
+  double sink = query(solver, pair);
+  const auto t1 = Clock::now();
+  const double single = std::max(1.0, nsBetween(t0, t1) - clock_ns);
+  const int k = static_cast<int>(std::clamp(options.batch_ns / single, 1.0, 4096.0));
+  std::vector<double> batches(options.reps);
+  for (int r = 0; r < options.reps; ++r) {
+    const auto b0 = Clock::now();
+    for (int i = 0; i < k; ++i) {
+      sink += query(solver, pair);
+      keep(sink);
+    }
+    const auto b1 = Clock::now();
+    batches[r] = std::max(0.0, nsBetween(b0, b1) - clock_ns) / k;
+  }
+  keep(sink);
+  std::sort(batches.begin(), batches.end());
+  const int n = options.reps;
+  m.ns = n % 2 ? batches[n / 2] : (batches[n / 2 - 1] + batches[n / 2]) / 2;
+  return m;
+}
+
+// ---------------------------------------------------------------------------
+// Statistics and output.
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+}
+
+/// Nearest-rank percentile (q in (0, 1]).
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  std::size_t rank = static_cast<std::size_t>(std::ceil(q * v.size()));
+  rank = std::clamp<std::size_t>(rank, 1, v.size());
+  return v[rank - 1];
+}
+
+struct Summary {
+  std::string solver, path, family;
+  std::size_t pairs = 0;
+  double median_ns = 0, p99_ns = 0, median_err = 0, max_err = 0;
+};
+
+Summary summarise(const std::string& solver, const std::string& path, const std::string& family,
+                  const std::vector<double>& ns, const std::vector<double>& err) {
+  Summary s{solver, path, family, ns.size()};
+  s.median_ns = median(ns);
+  s.p99_ns = percentile(ns, 0.99);
+  s.median_err = median(err);
+  s.max_err = err.empty() ? std::nan("") : *std::max_element(err.begin(), err.end());
+  return s;
+}
+
+std::string formatNs(double ns) {
+  char buffer[32];
+  if (ns >= 1e4) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", ns);
+  } else if (ns >= 100) {
+    std::snprintf(buffer, sizeof buffer, "%.0f", ns);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.1f", ns);
+  }
+  return buffer;
+}
+
+std::string formatErr(double e) {
+  char buffer[32];
+  if (e == 0) return "0";
+  std::snprintf(buffer, sizeof buffer, "%.1e", e);
+  return buffer;
+}
+
+/// Progress on stderr: a rewritten line on a terminal, a line per family otherwise.
+class Progress {
+ public:
+  Progress(std::size_t total, std::string what)
+      : total_(total), what_(std::move(what)), start_(Clock::now()), tty_(isatty(2)) {}
+
+  void update(std::size_t done, const std::string& detail, bool force = false) {
+    const auto now = Clock::now();
+    if (!force && nsBetween(last_, now) < 2e8) return;  // 5 updates a second
+    last_ = now;
+    const double elapsed = nsBetween(start_, now) * 1e-9;
+    const double fraction = total_ ? double(done) / double(total_) : 1.0;
+    const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+    char line[256];
+    std::snprintf(line, sizeof line, "%s %5.1f%% (%zu/%zu) %-18s elapsed %4.0fs, eta %4.0fs",
+                  what_.c_str(), 100 * fraction, done, total_, detail.c_str(), elapsed, eta);
+    if (tty_) {
+      std::fprintf(stderr, "\r%s\033[K", line);
+    } else if (detail != last_detail_ || force) {
+      std::fprintf(stderr, "%s\n", line);
+    }
+    last_detail_ = detail;
+    std::fflush(stderr);
+  }
+
+  void finish() {
+    update(total_, "done", true);
+    if (tty_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  std::size_t total_;
+  std::string what_;
+  Clock::time_point start_, last_{};
+  bool tty_;
+  std::string last_detail_;
+};
+
+std::string machineName() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line)) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  }
+  return "unknown CPU";
+}
+
+/// A Python with matplotlib: $FCL_DISK_PYTHON, python3 on PATH, /usr/bin/python3
+/// (Debian's python3-matplotlib lives there; a pyenv python3 may not have it).
+std::string findPython() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("FCL_DISK_PYTHON")) candidates.push_back(env);
+  candidates.push_back("python3");
+  candidates.push_back("/usr/bin/python3");
+  for (const auto& python : candidates) {
+    const std::string probe = "'" + python + "' -c 'import matplotlib' >/dev/null 2>&1";
+    if (std::system(probe.c_str()) == 0) return python;
+  }
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (!parseOptions(argc, argv, &options)) return 2;
+
+  // Installs the hook (and proves it reaches plain fcl::distance) before timing.
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+  const std::vector<Solver> solvers = makeSolvers();
+  const auto& families = fam::allFamilies();
+  const double clock_ns = measureClockOverhead();
+
+  // 1. Pairs and references.
+  std::vector<PreparedPair> pairs;
+  pairs.reserve(families.size() * options.pairs_per_family);
+  {
+    Progress progress(families.size() * options.pairs_per_family, "reference");
+    for (fam::Family family : families) {
+      for (Case& c : fam::makeFamily<double>(family, options.pairs_per_family, options.seed)) {
+        PreparedPair p;
+        const ref::ReferenceResult r = ref::referenceDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2);
+        p.reference = static_cast<double>(r.distance);
+        p.scale = fam::sceneScale(c);
+        p.family = family;
+        p.disk1 = std::make_unique<fcl::CollisionObjectd>(
+            std::make_shared<fcl_disk::Diskd>(c.r1), c.X_W1);
+        p.disk2 = std::make_unique<fcl::CollisionObjectd>(
+            std::make_shared<fcl_disk::Diskd>(c.r2), c.X_W2);
+        for (double h : kHeights) {
+          p.cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
+              std::make_shared<fcl::Cylinderd>(c.r1, h), c.X_W1));
+          p.cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
+              std::make_shared<fcl::Cylinderd>(c.r2, h), c.X_W2));
+        }
+        p.c = std::move(c);
+        pairs.push_back(std::move(p));
+        progress.update(pairs.size(), fam::familyName(family));
+      }
+    }
+    progress.finish();
+  }
+
+  // 2. Every solver on every pair, interleaved.
+  const std::size_t num_solvers = solvers.size();
+  std::vector<std::vector<Measurement>> results(pairs.size(),
+                                                std::vector<Measurement>(num_solvers));
+  const auto run_start = Clock::now();
+  {
+    Progress progress(pairs.size(), "timing   ");
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      for (std::size_t j = 0; j < num_solvers; ++j) {
+        const std::size_t s = (i + j) % num_solvers;  // rotate the order
+        results[i][s] = measure(solvers[s], pairs[i], options, clock_ns);
+      }
+      progress.update(i + 1, fam::familyName(pairs[i].family));
+    }
+    progress.finish();
+  }
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+  const double run_seconds = nsBetween(run_start, Clock::now()) * 1e-9;
+
+  // 3. Summaries: per (solver, family), and per solver over all families.
+  std::vector<Summary> summaries;
+  for (std::size_t s = 0; s < num_solvers; ++s) {
+    std::vector<double> all_ns, all_err;
+    for (fam::Family family : families) {
+      std::vector<double> ns, err;
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        if (pairs[i].family != family) continue;
+        ns.push_back(results[i][s].ns);
+        err.push_back(results[i][s].error);
+      }
+      all_ns.insert(all_ns.end(), ns.begin(), ns.end());
+      all_err.insert(all_err.end(), err.begin(), err.end());
+      summaries.push_back(
+          summarise(solvers[s].name, solvers[s].path, fam::familyName(family), ns, err));
+    }
+    summaries.push_back(summarise(solvers[s].name, solvers[s].path, "all", all_ns, all_err));
+  }
+  auto find = [&](const std::string& solver, const std::string& family) -> const Summary& {
+    for (const Summary& s : summaries)
+      if (s.solver == solver && s.family == family) return s;
+    static Summary none;
+    return none;
+  };
+
+  // 4. Table (markdown), grouped by family so solvers compare side by side.
+  std::printf("# fcl_disk_report\n\n");
+  std::printf("machine: %s, %ld logical CPUs; %zu pairs per family x %zu families, seed %llu;\n",
+              machineName().c_str(), sysconf(_SC_NPROCESSORS_ONLN),
+              static_cast<std::size_t>(options.pairs_per_family), families.size(),
+              static_cast<unsigned long long>(options.seed));
+  std::printf("time = median of %d batches of the same query (batch ~%.0f ns, clock cost "
+              "%.1f ns subtracted); timing took %.0f s.\n",
+              options.reps, options.batch_ns, clock_ns, run_seconds);
+  std::printf("error = |d - d_ref| / max(1, r1 + r2 + |c1 - c2|), d_ref: long-double "
+              "reference; FCL's overlap value -1 read as 0.\n\n");
+  std::printf("| family | solver | path | pairs | median ns | p99 ns | median err | max err |\n");
+  std::printf("|---|---|---|---:|---:|---:|---:|---:|\n");
+  std::vector<std::string> family_order{"all"};
+  for (fam::Family f : families) family_order.push_back(fam::familyName(f));
+  for (const std::string& family : family_order) {
+    for (const Solver& solver : solvers) {
+      const Summary& s = find(solver.name, family);
+      std::printf("| %s | %s | %s | %zu | %s | %s | %s | %s |\n", family.c_str(),
+                  solver.name.c_str(), solver.path.c_str(), s.pairs, formatNs(s.median_ns).c_str(),
+                  formatNs(s.p99_ns).c_str(), formatErr(s.median_err).c_str(),
+                  formatErr(s.max_err).c_str());
+    }
+  }
+
+  // 5. Headline figures (ratios of medians over all pairs, this run).
+  const Summary& exact = find("exact", "all");
+  const Summary& as = find("almohamad_selim", "all");
+  const Summary& exact_direct = find("exact_direct", "all");
+  const Summary& as_direct = find("almohamad_selim_direct", "all");
+  const Summary& ccd6 = find("gjk_libccd_h1e-6", "all");
+  const Summary& indep6 = find("gjk_indep_h1e-6", "all");
+  const Summary& fastest_gjk = ccd6.median_ns <= indep6.median_ns ? ccd6 : indep6;
+  std::printf("\n## Headline figures (medians over all %zu pairs, one run)\n\n", pairs.size());
+  std::printf("- exact / almohamad_selim median time: %.2fx (%s ns / %s ns; target <= 5x)\n",
+              exact.median_ns / as.median_ns, formatNs(exact.median_ns).c_str(),
+              formatNs(as.median_ns).c_str());
+  std::printf("- fastest GJK thin cylinder h=1e-6 (%s) / exact median time: %.1fx (%s ns / %s "
+              "ns; target >= 10x)\n",
+              fastest_gjk.solver.c_str(), fastest_gjk.median_ns / exact.median_ns,
+              formatNs(fastest_gjk.median_ns).c_str(), formatNs(exact.median_ns).c_str());
+  std::printf("- hook overhead, exact: (fcl::distance - direct) / fcl::distance = %.1f%% "
+              "(%s ns vs %s ns direct; target < 10%%)\n",
+              100 * (exact.median_ns - exact_direct.median_ns) / exact.median_ns,
+              formatNs(exact.median_ns).c_str(), formatNs(exact_direct.median_ns).c_str());
+  std::printf("- hook overhead, almohamad_selim: %.1f%% (%s ns vs %s ns direct)\n",
+              100 * (as.median_ns - as_direct.median_ns) / as.median_ns,
+              formatNs(as.median_ns).c_str(), formatNs(as_direct.median_ns).c_str());
+  std::printf("- exact max error over all families: %s of the scene size (bound 1e-12: %s)\n",
+              formatErr(exact.max_err).c_str(), exact.max_err <= 1e-12 ? "met" : "EXCEEDED");
+
+  // 6. CSV files.
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  const std::string csv_path = options.out_dir + "/report.csv";
+  const std::string pairs_path = options.out_dir + "/report_pairs.csv";
+  const std::string png_path = options.out_dir + "/report.png";
+  {
+    std::ofstream csv(csv_path);
+    if (!csv) {
+      std::fprintf(stderr, "fcl_disk_report: cannot write %s\n", csv_path.c_str());
+      return 1;
+    }
+    csv << "solver,path,family,pairs,median_ns,p99_ns,median_rel_err,max_rel_err\n";
+    csv.precision(6);
+    for (const Summary& s : summaries) {
+      csv << s.solver << ',' << s.path << ',' << s.family << ',' << s.pairs << ','
+          << s.median_ns << ',' << s.p99_ns << ',' << s.median_err << ',' << s.max_err << '\n';
+    }
+  }
+  {
+    std::ofstream csv(pairs_path);
+    csv << "family,case,solver,ns,distance,reference,scale,rel_err\n";
+    csv.precision(17);
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      for (std::size_t s = 0; s < num_solvers; ++s) {
+        const Measurement& m = results[i][s];
+        csv << fam::familyName(pairs[i].family) << ',' << pairs[i].c.name << ','
+            << solvers[s].name << ',' << std::setprecision(4) << m.ns << ','
+            << std::setprecision(17) << m.distance << ',' << pairs[i].reference << ','
+            << pairs[i].scale << ',' << std::setprecision(4) << m.error << '\n';
+      }
+    }
+  }
+  std::printf("\nwrote %s and %s\n", csv_path.c_str(), pairs_path.c_str());
+
+  // 7. The plot.
+  if (options.plot) {
+    const std::string python = findPython();
+    const std::string command = "'" + (python.empty() ? std::string("python3") : python) +
+                                "' '" FCL_DISK_PLOT_SCRIPT "' '" + csv_path + "' '" + png_path +
+                                "'";
+    if (python.empty()) {
+      std::fprintf(stderr,
+                   "fcl_disk_report: no python3 with matplotlib found (apt-get install "
+                   "python3-matplotlib, or set FCL_DISK_PYTHON); plot skipped. Run:\n  %s\n",
+                   command.c_str());
+    } else if (std::system(command.c_str()) != 0) {
+      std::fprintf(stderr, "fcl_disk_report: plotting failed: %s\n", command.c_str());
+      return 1;
+    } else {
+      std::printf("wrote %s\n", png_path.c_str());
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,282 @@
+// The hook: what FCL's public entry points answer for disks and for everything
+// else, the broadphase, method selection, conventions, and concurrency.
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl_disk/fcl_disk.h>
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <random>
+#include <set>
+#include <thread>
+#include <vector>
+
+namespace {
+
+using fcl::Transform3d;
+using Vec3 = Eigen::Vector3d;
+
+Transform3d pose(const Vec3& centre, const Vec3& normal) {
+  Transform3d X = Transform3d::Identity();
+  X.translation() = centre;
+  X.linear() =
+      Eigen::Quaterniond::FromTwoVectors(Vec3::UnitZ(), normal.normalized()).toRotationMatrix();
+  return X;
+}
+
+Transform3d randomPose(std::mt19937_64& rng, double spread) {
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  Transform3d X = Transform3d::Identity();
+  X.translation() = spread * Vec3(uniform(rng), uniform(rng), uniform(rng));
+  X.linear() = Eigen::Quaterniond(uniform(rng), uniform(rng), uniform(rng), uniform(rng))
+                   .normalized()
+                   .toRotationMatrix();
+  return X;
+}
+
+double fclDistance(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& b,
+                   fcl::GJKSolverType solver, fcl::DistanceResultd* out = nullptr) {
+  fcl::DistanceRequestd request;
+  request.gjk_solver_type = solver;
+  fcl::DistanceResultd result;
+  const double d = fcl::distance(&a, &b, request, result);
+  if (out) *out = result;
+  return d;
+}
+
+// Real cylinders and disk-versus-other-shape pairs must get exactly what FCL's
+// own narrow-phase solver computes (the entry FCL would have called).
+TEST(Hook, OtherPairsKeepFclsOwnAnswers) {
+  fcl_disk::registerDiskFunctions();
+  auto cylinder = std::make_shared<fcl::Cylinderd>(0.5, 1.0);
+  auto disk = std::make_shared<fcl_disk::Diskd>(0.7);
+  auto box = std::make_shared<fcl::Boxd>(0.3, 0.6, 0.2);
+  auto sphere = std::make_shared<fcl::Sphered>(0.4);
+  std::mt19937_64 rng(7);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Transform3d X1 = randomPose(rng, 2.0), X2 = randomPose(rng, 2.0);
+    const struct {
+      const char* name;
+      std::shared_ptr<fcl::CollisionGeometryd> a, b;
+    } pairs[] = {{"cylinder-cylinder", cylinder, cylinder},
+                 {"disk-box", disk, box},
+                 {"sphere-disk", sphere, disk},
+                 {"disk-cylinder", disk, cylinder}};
+    for (const auto& pair : pairs) {
+      SCOPED_TRACE(pair.name);
+      fcl::CollisionObjectd a(pair.a, X1), b(pair.b, X2);
+      fcl::detail::GJKSolver_libccd<double> solver;
+      double expected = 0;
+      Vec3 p1, p2;
+      // What ShapeDistanceTraversalNode does for an unsigned request.
+      const auto* ga = pair.a.get();
+      const auto* gb = pair.b.get();
+      auto shape_distance = [&](const auto& s1, const auto& s2) {
+        solver.shapeDistance(s1, X1, s2, X2, &expected, &p1, &p2);
+      };
+      if (pair.a == cylinder || pair.a == disk) {
+        const auto& s1 = static_cast<const fcl::Cylinderd&>(*ga);
+        if (pair.b == box) shape_distance(s1, static_cast<const fcl::Boxd&>(*gb));
+        else shape_distance(s1, static_cast<const fcl::Cylinderd&>(*gb));
+      } else {
+        shape_distance(static_cast<const fcl::Sphered&>(*ga),
+                       static_cast<const fcl::Cylinderd&>(*gb));
+      }
+      EXPECT_EQ(fclDistance(a, b, fcl::GST_LIBCCD), expected);
+    }
+  }
+}
+
+TEST(Hook, DiskPairsAreAnsweredBySelectedMethodAndRestored) {
+  auto d1 = std::make_shared<fcl_disk::Diskd>(1.0);
+  auto d2 = std::make_shared<fcl_disk::Diskd>(1.0);
+  // facts.md counterexample A, where the methods disagree by 0.35.
+  const Transform3d X1 = pose(Vec3::Zero(), Vec3::UnitZ());
+  const Transform3d X2 = pose(Vec3(0, 0, -0.5), Vec3(0, 1, 2));
+  fcl::CollisionObjectd a(d1, X1), b(d2, X2);
+  const double exact = fcl_disk::exactDiskDistance(1.0, X1, 1.0, X2).distance;
+  const double report = fcl_disk::almohamadSelimDiskDistance(1.0, X1, 1.0, X2).distance;
+  ASSERT_GT(report - exact, 0.3);
+
+  EXPECT_EQ(fcl_disk::registeredDiskDistanceMethod(), fcl_disk::DiskDistanceMethod::exact);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) EXPECT_EQ(fclDistance(a, b, solver), exact);
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::almohamad_selim);
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::almohamad_selim);  // idempotent
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) EXPECT_EQ(fclDistance(a, b, solver), report);
+  fcl_disk::registerDiskFunctions();
+  EXPECT_EQ(fcl_disk::registeredDiskDistanceMethod(), fcl_disk::DiskDistanceMethod::exact);
+  EXPECT_EQ(fclDistance(a, b, fcl::GST_LIBCCD), exact);
+}
+
+// Overlap: distance 0 with a common point as both nearest points, for unsigned
+// and signed requests and both solvers (the indep signed path would otherwise
+// call collide() and assert on a penetration depth).
+TEST(Hook, OverlapGivesZeroAndACommonPoint) {
+  auto d1 = std::make_shared<fcl_disk::Diskd>(1.0);
+  auto d2 = std::make_shared<fcl_disk::Diskd>(1.0);
+  fcl::CollisionObjectd a(d1, pose(Vec3::Zero(), Vec3::UnitZ()));
+  fcl::CollisionObjectd b(d2, pose(Vec3(0.5, 0, 0), Vec3::UnitX()));
+  for (bool is_signed : {false, true}) {
+    for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+      fcl::DistanceRequestd request(true);
+      request.enable_signed_distance = is_signed;
+      request.gjk_solver_type = solver;
+      fcl::DistanceResultd result;
+      EXPECT_EQ(fcl::distance(&a, &b, request, result), 0.0);
+      EXPECT_EQ(result.min_distance, 0.0);
+      EXPECT_EQ(result.nearest_points[0], result.nearest_points[1]);
+      // The point lies on both disks: z = 0 (disk 1) and x = 0.5 (disk 2).
+      EXPECT_NEAR(result.nearest_points[0].z(), 0.0, 1e-15);
+      EXPECT_NEAR(result.nearest_points[0].x(), 0.5, 1e-15);
+    }
+  }
+}
+
+TEST(Hook, CollideReportsOneContactOnBothDisks) {
+  auto d1 = std::make_shared<fcl_disk::Diskd>(1.0);
+  auto d2 = std::make_shared<fcl_disk::Diskd>(0.8);
+  const Transform3d X1 = pose(Vec3::Zero(), Vec3::UnitZ());
+  const Transform3d X2 = pose(Vec3(0.2, 0.1, 0.3), Vec3(1, 0, 0.2));
+  fcl::CollisionObjectd a(d1, X1), b(d2, X2);
+  fcl_disk::DiskContact<double> expected;
+  ASSERT_TRUE(fcl_disk::intersectDisks(1.0, X1, 0.8, X2, &expected));
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    fcl::CollisionRequestd request(1, true);
+    request.gjk_solver_type = solver;
+    fcl::CollisionResultd result;
+    EXPECT_EQ(fcl::collide(&a, &b, request, result), 1u);
+    ASSERT_TRUE(result.isCollision());
+    const auto& contact = result.getContact(0);
+    EXPECT_EQ(contact.pos, expected.pos);
+    EXPECT_EQ(contact.normal, expected.normal);
+    EXPECT_EQ(contact.penetration_depth, expected.penetration_depth);
+    EXPECT_EQ(contact.o1, d1.get());
+    EXPECT_EQ(contact.o2, d2.get());
+  }
+  // Apart: no contact.
+  fcl::CollisionObjectd far(d2, pose(Vec3(0, 0, 3), Vec3::UnitZ()));
+  fcl::CollisionRequestd request;
+  fcl::CollisionResultd result;
+  EXPECT_EQ(fcl::collide(&a, &far, request, result), 0u);
+}
+
+// The float path uses the tables compiled into user code: it must reach us too.
+TEST(Hook, FloatQueriesUseTheDiskSolver) {
+  auto d1 = std::make_shared<fcl_disk::Diskf>(1.0f);
+  auto d2 = std::make_shared<fcl_disk::Diskf>(1.0f);
+  const fcl::Transform3f X1 = pose(Vec3::Zero(), Vec3::UnitZ()).cast<float>();
+  const fcl::Transform3f X2 = pose(Vec3(0, 0, -0.5), Vec3(0, 1, 2)).cast<float>();
+  fcl::CollisionObjectf a(d1, X1), b(d2, X2);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    fcl::DistanceRequestf request;
+    request.gjk_solver_type = solver;
+    fcl::DistanceResultf result;
+    EXPECT_EQ(fcl::distance(&a, &b, request, result),
+              fcl_disk::exactDiskDistance(1.0f, X1, 1.0f, X2).distance);
+  }
+}
+
+// A scene of disks (and boxes): the broadphase finds the same nearest pair and
+// the same colliding pairs as brute-force pairwise queries.
+TEST(Hook, BroadphaseAgreesWithBruteForce) {
+  std::mt19937_64 rng(2024);
+  std::uniform_real_distribution<double> radius(0.1, 0.6);
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  for (int i = 0; i < 60; ++i) {
+    std::shared_ptr<fcl::CollisionGeometryd> geometry;
+    if (i % 10 == 9) geometry = std::make_shared<fcl::Boxd>(0.3, 0.2, 0.1);
+    else geometry = std::make_shared<fcl_disk::Diskd>(radius(rng));
+    objects.push_back(std::make_unique<fcl::CollisionObjectd>(geometry, randomPose(rng, 4.0)));
+  }
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  for (auto& object : objects) manager.registerObject(object.get());
+  manager.setup();
+
+  double brute_min = std::numeric_limits<double>::max();
+  std::set<std::pair<const void*, const void*>> brute_colliding;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    for (std::size_t j = i + 1; j < objects.size(); ++j) {
+      brute_min = std::min(brute_min, fclDistance(*objects[i], *objects[j], fcl::GST_LIBCCD));
+      fcl::CollisionRequestd request;
+      fcl::CollisionResultd result;
+      if (fcl::collide(objects[i].get(), objects[j].get(), request, result) > 0) {
+        const void* g1 = objects[i]->collisionGeometry().get();
+        const void* g2 = objects[j]->collisionGeometry().get();
+        brute_colliding.insert({std::min(g1, g2), std::max(g1, g2)});
+      }
+    }
+  }
+  fcl::DefaultDistanceData<double> distance_data;
+  manager.distance(&distance_data, fcl::DefaultDistanceFunction);
+  EXPECT_EQ(distance_data.result.min_distance, std::max(brute_min, 0.0));
+
+  fcl::DefaultCollisionData<double> collision_data;
+  collision_data.request.num_max_contacts = 100000;
+  manager.collide(&collision_data, fcl::DefaultCollisionFunction);
+  std::set<std::pair<const void*, const void*>> broad_colliding;
+  for (std::size_t k = 0; k < collision_data.result.numContacts(); ++k) {
+    const auto& contact = collision_data.result.getContact(k);
+    const void* g1 = contact.o1;
+    const void* g2 = contact.o2;
+    broad_colliding.insert({std::min(g1, g2), std::max(g1, g2)});
+  }
+  EXPECT_EQ(broad_colliding, brute_colliding);
+  EXPECT_FALSE(brute_colliding.empty());  // the scene is dense enough to test something
+}
+
+// Registration racing with queries: every query still gets the serial answer.
+TEST(Hook, ConcurrentQueriesMatchSerialAnswers) {
+  std::mt19937_64 rng(99);
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+  for (int i = 0; i < 40; ++i) {
+    objects.push_back(std::make_unique<fcl::CollisionObjectd>(
+        std::make_shared<fcl_disk::Diskd>(0.5), randomPose(rng, 2.0)));
+  }
+  std::vector<double> serial;
+  for (std::size_t i = 0; i + 1 < objects.size(); ++i)
+    serial.push_back(fclDistance(*objects[i], *objects[i + 1], fcl::GST_LIBCCD));
+
+  std::atomic<int> mismatches{0};
+  std::atomic<bool> stop{false};
+  std::thread registrar([&] {
+    while (!stop) fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+  });
+  std::vector<std::thread> workers;
+  for (int t = 0; t < 4; ++t) {
+    workers.emplace_back([&, t] {
+      for (int round = 0; round < 50; ++round) {
+        for (std::size_t i = 0; i + 1 < objects.size(); ++i) {
+          const auto solver = (t % 2) ? fcl::GST_INDEP : fcl::GST_LIBCCD;
+          if (fclDistance(*objects[i], *objects[i + 1], solver) != serial[i]) ++mismatches;
+        }
+      }
+    });
+  }
+  for (auto& worker : workers) worker.join();
+  stop = true;
+  registrar.join();
+  EXPECT_EQ(mismatches.load(), 0);
+}
+
+TEST(Disk, RejectsBadRadiusWithTheValue) {
+  for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
+                     std::numeric_limits<double>::infinity()}) {
+    try {
+      fcl_disk::Diskd disk(bad);
+      ADD_FAILURE() << "accepted radius " << bad;
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(std::string(error.what()).find("radius"), std::string::npos);
+    }
+  }
+  EXPECT_THROW(fcl_disk::Diskf(-2.0f), std::invalid_argument);
+  const fcl_disk::Diskd disk(2.5);
+  EXPECT_EQ(disk.radius, 2.5);
+  EXPECT_EQ(disk.lz, 0.0);
+  EXPECT_EQ(disk.getNodeType(), fcl::GEOM_CYLINDER);
+}
+
+}  // namespace
