@@ -26,9 +26,10 @@
 //
 // Output: a markdown table on stdout (per solver and family: median and p99
 // ns/query, median and max error), the headline ratios, and in --out:
-//   report.csv        one row per (solver, family) with those figures;
-//   report_pairs.csv  one row per (pair, solver): time, distance, reference, error;
-//   report.png        time against error, log-log (bench/plot_report.py).
+//   report.csv        one row per (solver, family) with those figures and the
+//                     pair of largest error;
+//   report.png        time against error, log-log (bench/plot_report.py);
+//   report_pairs.csv  with --pairs-csv: one row per (pair, solver).
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
@@ -79,22 +80,24 @@ struct Options {
   std::string out_dir = FCL_DISK_DEFAULT_OUT;
   bool plot = true;
   bool quick = false;
+  bool pairs_csv = false;     ///< also write one row per (pair, solver)
 };
 
 void printUsage(const char* argv0) {
   std::printf(
       "Usage: %s [--quick] [--out DIR] [--pairs N] [--reps R] [--batch-ns T] [--seed S] "
-      "[--no-plot]\n"
+      "[--pairs-csv] [--no-plot]\n"
       "Runs every disk-disk solver (exact, almohamad_selim, FCL GJK libccd/indep on\n"
       "Cylinder(r, h), h = 1e-2, 1e-4, 1e-6) through fcl::distance on every configuration\n"
       "family, and reports time per query against error vs a long-double reference.\n"
       "  --quick       20 pairs per family, 3 batches: a smoke test of a few seconds\n"
-      "  --out DIR     where report.csv, report_pairs.csv and report.png go\n"
+      "  --out DIR     where report.csv and report.png (and report_pairs.csv) go\n"
       "                (default %s)\n"
       "  --pairs N     pairs per family (default 2000; quick 20)\n"
       "  --reps R      timed batches per pair and solver, median kept (default 5; quick 3)\n"
       "  --batch-ns T  target length of one batch in ns (default 2000; quick 500)\n"
       "  --seed S      family seed (default 20240601)\n"
+      "  --pairs-csv   also write report_pairs.csv (one row per pair and solver)\n"
       "  --no-plot     do not run bench/plot_report.py\n",
       argv0, FCL_DISK_DEFAULT_OUT);
 }
@@ -125,6 +128,8 @@ bool parseOptions(int argc, char** argv, Options* options) {
       batch_set = true;
     } else if (arg == "--seed") {
       options->seed = std::strtoull(value("--seed"), nullptr, 10);
+    } else if (arg == "--pairs-csv") {
+      options->pairs_csv = true;
     } else if (arg == "--no-plot") {
       options->plot = false;
     } else if (arg == "--help" || arg == "-h") {
@@ -285,6 +290,35 @@ Measurement measure(const Solver& solver, const PreparedPair& pair, const Option
   return m;
 }
 
+/// What is kept of a pair once its objects are freed.
+struct PairRecord {
+  fam::Family family;
+  std::string name;
+  double reference = 0;
+  double scale = 1;
+  std::vector<Measurement> results;  ///< one per solver
+};
+
+PreparedPair preparePair(Case c, fam::Family family) {
+  PreparedPair p;
+  const ref::ReferenceResult r = ref::referenceDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2);
+  p.reference = static_cast<double>(r.distance);
+  p.scale = fam::sceneScale(c);
+  p.family = family;
+  p.disk1 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r1),
+                                                    c.X_W1);
+  p.disk2 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r2),
+                                                    c.X_W2);
+  for (double h : kHeights) {
+    p.cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
+        std::make_shared<fcl::Cylinderd>(c.r1, h), c.X_W1));
+    p.cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
+        std::make_shared<fcl::Cylinderd>(c.r2, h), c.X_W2));
+  }
+  p.c = std::move(c);
+  return p;
+}
+
 // ---------------------------------------------------------------------------
 // Statistics and output.
 
@@ -308,11 +342,14 @@ struct Summary {
   std::string solver, path, family;
   std::size_t pairs = 0;
   double median_ns = 0, p99_ns = 0, median_err = 0, max_err = 0;
+  std::string worst_case;  ///< name of the pair with the max error
 };
 
 Summary summarise(const std::string& solver, const std::string& path, const std::string& family,
-                  const std::vector<double>& ns, const std::vector<double>& err) {
+                  const std::vector<double>& ns, const std::vector<double>& err,
+                  const std::string& worst_case) {
   Summary s{solver, path, family, ns.size()};
+  s.worst_case = worst_case;
   s.median_ns = median(ns);
   s.p99_ns = percentile(ns, 0.99);
   s.median_err = median(err);
@@ -342,8 +379,8 @@ std::string formatErr(double e) {
 /// Progress on stderr: a rewritten line on a terminal, a line per family otherwise.
 class Progress {
  public:
-  Progress(std::size_t total, std::string what)
-      : total_(total), what_(std::move(what)), start_(Clock::now()), tty_(isatty(2)) {}
+  explicit Progress(std::size_t total)
+      : total_(total), start_(Clock::now()), tty_(isatty(2)) {}
 
   void update(std::size_t done, const std::string& detail, bool force = false) {
     const auto now = Clock::now();
@@ -353,8 +390,8 @@ class Progress {
     const double fraction = total_ ? double(done) / double(total_) : 1.0;
     const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
     char line[256];
-    std::snprintf(line, sizeof line, "%s %5.1f%% (%zu/%zu) %-18s elapsed %4.0fs, eta %4.0fs",
-                  what_.c_str(), 100 * fraction, done, total_, detail.c_str(), elapsed, eta);
+    std::snprintf(line, sizeof line, "fcl_disk_report: %5.1f%%  %-42s elapsed %4.0f s, eta %4.0f s",
+                  100 * fraction, detail.c_str(), elapsed, eta);
     if (tty_) {
       std::fprintf(stderr, "\r%s\033[K", line);
     } else if (detail != last_detail_ || force) {
@@ -371,7 +408,6 @@ class Progress {
 
  private:
   std::size_t total_;
-  std::string what_;
   Clock::time_point start_, last_{};
   bool tty_;
   std::string last_detail_;
@@ -412,75 +448,77 @@ int main(int argc, char** argv) {
   // Installs the hook (and proves it reaches plain fcl::distance) before timing.
   fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
   const std::vector<Solver> solvers = makeSolvers();
+  const std::size_t num_solvers = solvers.size();
   const auto& families = fam::allFamilies();
   const double clock_ns = measureClockOverhead();
 
-  // 1. Pairs and references.
-  std::vector<PreparedPair> pairs;
-  pairs.reserve(families.size() * options.pairs_per_family);
-  {
-    Progress progress(families.size() * options.pairs_per_family, "reference");
-    for (fam::Family family : families) {
-      for (Case& c : fam::makeFamily<double>(family, options.pairs_per_family, options.seed)) {
-        PreparedPair p;
-        const ref::ReferenceResult r = ref::referenceDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2);
-        p.reference = static_cast<double>(r.distance);
-        p.scale = fam::sceneScale(c);
-        p.family = family;
-        p.disk1 = std::make_unique<fcl::CollisionObjectd>(
-            std::make_shared<fcl_disk::Diskd>(c.r1), c.X_W1);
-        p.disk2 = std::make_unique<fcl::CollisionObjectd>(
-            std::make_shared<fcl_disk::Diskd>(c.r2), c.X_W2);
-        for (double h : kHeights) {
-          p.cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
-              std::make_shared<fcl::Cylinderd>(c.r1, h), c.X_W1));
-          p.cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
-              std::make_shared<fcl::Cylinderd>(c.r2, h), c.X_W2));
-        }
-        p.c = std::move(c);
-        pairs.push_back(std::move(p));
-        progress.update(pairs.size(), fam::familyName(family));
-      }
-    }
-    progress.finish();
-  }
-
-  // 2. Every solver on every pair, interleaved.
-  const std::size_t num_solvers = solvers.size();
-  std::vector<std::vector<Measurement>> results(pairs.size(),
-                                                std::vector<Measurement>(num_solvers));
+  // 1. Family by family: pairs, references, then every solver on every pair,
+  //    interleaved; the FCL objects are freed before the next family.
+  std::vector<PairRecord> records;
+  records.reserve(families.size() * options.pairs_per_family);
   const auto run_start = Clock::now();
   {
-    Progress progress(pairs.size(), "timing   ");
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
-      for (std::size_t j = 0; j < num_solvers; ++j) {
-        const std::size_t s = (i + j) % num_solvers;  // rotate the order
-        results[i][s] = measure(solvers[s], pairs[i], options, clock_ns);
+    Progress progress(families.size() * options.pairs_per_family);
+    std::size_t done = 0;
+    for (std::size_t f = 0; f < families.size(); ++f) {
+      const fam::Family family = families[f];
+      char label[64];
+      std::snprintf(label, sizeof label, "family %zu/%zu %s", f + 1, families.size(),
+                    fam::familyName(family));
+      std::vector<PreparedPair> pairs;
+      pairs.reserve(options.pairs_per_family);
+      for (Case& c : fam::makeFamily<double>(family, options.pairs_per_family, options.seed)) {
+        pairs.push_back(preparePair(std::move(c), family));
+        progress.update(done + pairs.size() / 4, std::string(label) + ": reference");
       }
-      progress.update(i + 1, fam::familyName(pairs[i].family));
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        PairRecord record{family, pairs[i].c.name, pairs[i].reference, pairs[i].scale,
+                          std::vector<Measurement>(num_solvers)};
+        for (std::size_t j = 0; j < num_solvers; ++j) {
+          const std::size_t s = (i + j) % num_solvers;  // rotate the order
+          record.results[s] = measure(solvers[s], pairs[i], options, clock_ns);
+        }
+        records.push_back(std::move(record));
+        progress.update(done + pairs.size() / 4 + (3 * (i + 1)) / 4,
+                        std::string(label) + ": timing");
+      }
+      done += pairs.size();
     }
     progress.finish();
   }
   fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
   const double run_seconds = nsBetween(run_start, Clock::now()) * 1e-9;
 
-  // 3. Summaries: per (solver, family), and per solver over all families.
+  // 2. Summaries: per (solver, family), and per solver over all families.
   std::vector<Summary> summaries;
   for (std::size_t s = 0; s < num_solvers; ++s) {
     std::vector<double> all_ns, all_err;
+    std::string all_worst;
+    double all_worst_err = -1;
     for (fam::Family family : families) {
       std::vector<double> ns, err;
-      for (std::size_t i = 0; i < pairs.size(); ++i) {
-        if (pairs[i].family != family) continue;
-        ns.push_back(results[i][s].ns);
-        err.push_back(results[i][s].error);
+      std::string worst;
+      double worst_err = -1;
+      for (const PairRecord& r : records) {
+        if (r.family != family) continue;
+        ns.push_back(r.results[s].ns);
+        err.push_back(r.results[s].error);
+        if (r.results[s].error > worst_err) {
+          worst_err = r.results[s].error;
+          worst = r.name;
+        }
+      }
+      if (worst_err > all_worst_err) {
+        all_worst_err = worst_err;
+        all_worst = worst;
       }
       all_ns.insert(all_ns.end(), ns.begin(), ns.end());
       all_err.insert(all_err.end(), err.begin(), err.end());
       summaries.push_back(
-          summarise(solvers[s].name, solvers[s].path, fam::familyName(family), ns, err));
+          summarise(solvers[s].name, solvers[s].path, fam::familyName(family), ns, err, worst));
     }
-    summaries.push_back(summarise(solvers[s].name, solvers[s].path, "all", all_ns, all_err));
+    summaries.push_back(
+        summarise(solvers[s].name, solvers[s].path, "all", all_ns, all_err, all_worst));
   }
   auto find = [&](const std::string& solver, const std::string& family) -> const Summary& {
     for (const Summary& s : summaries)
@@ -489,14 +527,14 @@ int main(int argc, char** argv) {
     return none;
   };
 
-  // 4. Table (markdown), grouped by family so solvers compare side by side.
+  // 3. Table (markdown), grouped by family so solvers compare side by side.
   std::printf("# fcl_disk_report\n\n");
   std::printf("machine: %s, %ld logical CPUs; %zu pairs per family x %zu families, seed %llu;\n",
               machineName().c_str(), sysconf(_SC_NPROCESSORS_ONLN),
               static_cast<std::size_t>(options.pairs_per_family), families.size(),
               static_cast<unsigned long long>(options.seed));
   std::printf("time = median of %d batches of the same query (batch ~%.0f ns, clock cost "
-              "%.1f ns subtracted); timing took %.0f s.\n",
+              "%.1f ns subtracted); the run took %.0f s.\n",
               options.reps, options.batch_ns, clock_ns, run_seconds);
   std::printf("error = |d - d_ref| / max(1, r1 + r2 + |c1 - c2|), d_ref: long-double "
               "reference; FCL's overlap value -1 read as 0.\n\n");
@@ -514,7 +552,7 @@ int main(int argc, char** argv) {
     }
   }
 
-  // 5. Headline figures (ratios of medians over all pairs, this run).
+  // 4. Headline figures (ratios of medians over all pairs, this run).
   const Summary& exact = find("exact", "all");
   const Summary& as = find("almohamad_selim", "all");
   const Summary& exact_direct = find("exact_direct", "all");
@@ -522,7 +560,7 @@ int main(int argc, char** argv) {
   const Summary& ccd6 = find("gjk_libccd_h1e-6", "all");
   const Summary& indep6 = find("gjk_indep_h1e-6", "all");
   const Summary& fastest_gjk = ccd6.median_ns <= indep6.median_ns ? ccd6 : indep6;
-  std::printf("\n## Headline figures (medians over all %zu pairs, one run)\n\n", pairs.size());
+  std::printf("\n## Headline figures (medians over all %zu pairs, one run)\n\n", records.size());
   std::printf("- exact / almohamad_selim median time: %.2fx (%s ns / %s ns; target <= 5x)\n",
               exact.median_ns / as.median_ns, formatNs(exact.median_ns).c_str(),
               formatNs(as.median_ns).c_str());
@@ -537,8 +575,24 @@ int main(int argc, char** argv) {
   std::printf("- hook overhead, almohamad_selim: %.1f%% (%s ns vs %s ns direct)\n",
               100 * (as.median_ns - as_direct.median_ns) / as.median_ns,
               formatNs(as.median_ns).c_str(), formatNs(as_direct.median_ns).c_str());
-  std::printf("- exact max error over all families: %s of the scene size (bound 1e-12: %s)\n",
-              formatErr(exact.max_err).c_str(), exact.max_err <= 1e-12 ? "met" : "EXCEEDED");
+
+  // 5. The exact solver against its promise, with the cases that break it.
+  std::size_t exact_index = 0;
+  while (solvers[exact_index].name != "exact") ++exact_index;
+  std::vector<const PairRecord*> violations;
+  for (const PairRecord& r : records)
+    if (!(r.results[exact_index].error <= 1e-12)) violations.push_back(&r);
+  std::printf("- exact max error: %s of the scene size (%s); pairs above the 1e-12 bound: "
+              "%zu of %zu\n",
+              formatErr(exact.max_err).c_str(), exact.worst_case.c_str(), violations.size(),
+              records.size());
+  for (std::size_t i = 0; i < violations.size() && i < 12; ++i) {
+    const PairRecord& r = *violations[i];
+    std::printf("  - %s (seed %llu): exact %.17g, reference %.17g, error %s\n", r.name.c_str(),
+                static_cast<unsigned long long>(options.seed), r.results[exact_index].distance,
+                r.reference, formatErr(r.results[exact_index].error).c_str());
+  }
+  if (violations.size() > 12) std::printf("  - ... (--pairs-csv lists them all)\n");
 
   // 6. CSV files.
   std::error_code ec;
@@ -552,28 +606,28 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "fcl_disk_report: cannot write %s\n", csv_path.c_str());
       return 1;
     }
-    csv << "solver,path,family,pairs,median_ns,p99_ns,median_rel_err,max_rel_err\n";
+    csv << "solver,path,family,pairs,median_ns,p99_ns,median_rel_err,max_rel_err,worst_case\n";
     csv.precision(6);
     for (const Summary& s : summaries) {
       csv << s.solver << ',' << s.path << ',' << s.family << ',' << s.pairs << ','
-          << s.median_ns << ',' << s.p99_ns << ',' << s.median_err << ',' << s.max_err << '\n';
+          << s.median_ns << ',' << s.p99_ns << ',' << s.median_err << ',' << s.max_err << ','
+          << s.worst_case << '\n';
     }
   }
-  {
+  std::printf("\nwrote %s\n", csv_path.c_str());
+  if (options.pairs_csv) {
     std::ofstream csv(pairs_path);
     csv << "family,case,solver,ns,distance,reference,scale,rel_err\n";
-    csv.precision(17);
-    for (std::size_t i = 0; i < pairs.size(); ++i) {
+    for (const PairRecord& r : records) {
       for (std::size_t s = 0; s < num_solvers; ++s) {
-        const Measurement& m = results[i][s];
-        csv << fam::familyName(pairs[i].family) << ',' << pairs[i].c.name << ','
-            << solvers[s].name << ',' << std::setprecision(4) << m.ns << ','
-            << std::setprecision(17) << m.distance << ',' << pairs[i].reference << ','
-            << pairs[i].scale << ',' << std::setprecision(4) << m.error << '\n';
+        const Measurement& m = r.results[s];
+        csv << fam::familyName(r.family) << ',' << r.name << ',' << solvers[s].name << ','
+            << std::setprecision(4) << m.ns << ',' << std::setprecision(17) << m.distance << ','
+            << r.reference << ',' << r.scale << ',' << std::setprecision(4) << m.error << '\n';
       }
     }
+    std::printf("wrote %s\n", pairs_path.c_str());
   }
-  std::printf("\nwrote %s and %s\n", csv_path.c_str(), pairs_path.c_str());
 
   // 7. The plot.
   if (options.plot) {

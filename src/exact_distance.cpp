@@ -1,5 +1,5 @@
 // Exact disk-disk distance. Derivation: docs/exact_distance.md; the names below
-// (c, R, m, s, w, G, e1, e2, t1, t2, a1, a2) are the document's.
+// (c, R, m, s, psi, g, H, lambda/mu, the certificate g(w)) are the document's.
 #include "fcl_disk/exact_distance.h"
 
 #include <algorithm>
@@ -32,8 +32,8 @@ constexpr double kStagnation = 4 * kEps * kEps;
 /// Iterations are capped; typical rim-rim cases need 3-6 (docs/exact_distance.md).
 constexpr int kMaxNewtonIterations = 64;
 
-/// Backtracking halvings per Newton step before accepting the step anyway;
-/// 2^-30 of a Newton step is below the rounding of G.
+/// Backtracking halvings per Newton step; 2^-30 of a step changes psi by less
+/// than its rounding, so giving up then means the rounding floor is reached.
 constexpr int kMaxLineSearchHalvings = 30;
 
 /// The secular equation |z(mu)| = r of the disk-constrained Newton model is
@@ -47,7 +47,8 @@ constexpr double kArmijoFraction = 1e-4;
 
 /// A face-case point whose projection falls outside the other disk's rim by at
 /// most this relative amount (rounding of a point computed exactly on the rim)
-/// is clamped onto the rim instead of being handed to Newton at a kink of G.
+/// is clamped onto the rim: it is the optimum up to that rounding, and the
+/// rim-rim iteration would meet a degenerate (flat) optimum there instead.
 constexpr double kRimSlack = 16 * kEps;
 
 struct Solution {
@@ -169,14 +170,16 @@ Vec2 minimiseModelOnDisk(const Eigen::Matrix2d& H, const Vec2& b, double r) {
     const Vec2 z = z_of(0.0);
     if (z.norm() <= r) return V * z;
   }
-  // On the circle. |z(mu)| decreases on (-h_min, inf); |z(mu_hi)| <= r at mu_hi = |b|/r.
+  // On the circle. |z(mu)| decreases on (0, inf) and |z(mu_hi)| <= r at
+  // mu_hi = |b|/r. Its limit at mu -> 0+ is infinite unless b has no component
+  // along a null eigenvector of H; if that limit is inside the disk we are in
+  // the "hard case": complete z along the null eigenvector to reach the circle.
   double mu_lo = 0.0, mu_hi = b.norm() / r;
-  if (!(z_of(mu_lo).norm() > r)) {
-    // Hard case (b has no component along the null eigenvector of H): complete
-    // z(0) along that eigenvector to reach the circle.
-    Vec2 z(0.0, h.y() > 0.0 ? -beta.y() / h.y() : 0.0);
-    z.x() = std::sqrt(std::max(0.0, r * r - z.y() * z.y()));
-    return V * z;
+  if (h.x() == 0.0 && beta.x() == 0.0) {
+    const double along_y = h.y() > 0.0 ? -beta.y() / h.y() : 0.0;
+    if (std::abs(along_y) <= r) {
+      return V * Vec2(std::sqrt(r * r - along_y * along_y), along_y);
+    }
   }
   double mu = mu_hi;
   for (int iteration = 0; iteration < kMaxSecularIterations; ++iteration) {
@@ -216,19 +219,23 @@ Solution rimRim(const PairInFrame1& pair, double scale) {
     const double upper = std::sqrt(2.0 * at.psi);
     if (upper <= best.distance) best = {x, at.q, upper, DiskPairFeature::rim_rim, iteration};
     const double lower = certifiedLowerBound(pair, at.q - x);
-#ifdef FCL_DISK_TRACE
-    fprintf(stderr, "it %d s=(%.17g %.17g) |s|-r1=%g upper=%.17g lower=%.17g\n", iteration,
-            s.x(), s.y(), s.norm() - r1, upper, lower);
-#endif
     if (best.distance - lower <= gap_tolerance) {
       best.iterations = iteration;
       return best;
     }
     // Model in z = s + step: b = gradient - H s.
     const Vec2 target = minimiseModelOnDisk(at.hessian, at.gradient - at.hessian * s, r1);
-    const Vec2 step = target - s;
-    const double slope = at.gradient.dot(step);
-    if (!(slope < 0.0)) break;  // no descent left: rounding floor reached
+    Vec2 step = target - s;
+    double slope = at.gradient.dot(step);
+    if (!(slope < 0.0)) {
+      // The model step is no descent (H nearly singular, rounding): fall back to
+      // the projected gradient step, a descent direction at any non-optimal point.
+      Vec2 projected = s - at.gradient;
+      if (projected.norm() > r1) projected *= r1 / projected.norm();
+      step = projected - s;
+      slope = at.gradient.dot(step);
+      if (!(slope < 0.0)) break;  // stationary to rounding
+    }
     double alpha = 1.0;
     bool improved = false;
     PointToDisk2 next;

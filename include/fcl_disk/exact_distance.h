@@ -16,9 +16,11 @@ namespace fcl_disk {
 ///
 /// Method (docs/exact_distance.md): (1) a closed-form intersection test; (2) the
 /// two closed-form face cases, accepted only when their optimality (KKT)
-/// conditions hold; (3) otherwise the rim-rim case by Newton's method on the
-/// strongly concave dual G(w) = w.(c2 - c1) - r1|P1 w| - r2|P2 w| - |w|^2/2,
-/// whose maximiser is w* = p_W2 - p_W1, stopped by the duality gap.
+/// conditions hold; (3) otherwise the rim-rim case: Newton's method on the
+/// convex psi(p) = dist(p, K2)^2 / 2 over disk 1, each step minimising psi's
+/// quadratic model over the disk exactly, with backtracking; it is stopped by
+/// the duality gap between |p - q| and the certificate
+/// g(w) = w.(c2 - c1) - r1|P1 w| - r2|P2 w| (a lower bound for every unit w).
 ///
 /// Guarantee (double): |distance - d_true| <= 1e-12 * max(1, r1 + r2 + |c1 - c2|)
 /// and both points lie on their disks to the same bound plus the rounding of
@@ -39,9 +41,11 @@ namespace fcl_disk {
 ///   projection contains the other's centre line point), feature face1_rim2.
 /// - Face cases: when several extreme rim points tie (never, unless the planes
 ///   are parallel) the +u direction of the other disk is used.
-/// - Rim-rim: the optimal pair is unique (strict convexity of circles); the
-///   Newton iteration starts from the centres' line and is capped at
-///   kMaxNewtonIterations, after which the best certified pair is returned.
+/// - Rim-rim: the optimal pair is unique (a convex set of optimal points on a
+///   circle is one point). Newton starts at the point of disk 1 nearest c2 and
+///   stops at a certified gap of 1e-14 * scale, at the rounding floor (flat,
+///   near-degenerate optima, e.g. next to a face case), or after 64 iterations;
+///   the best pair found is returned and lower_bound says how well it is proven.
 /// @pre r1, r2 > 0 and finite; X_Wi has an orthonormal rotation. Non-finite
 ///      input yields a NaN distance.
 template <typename S>
