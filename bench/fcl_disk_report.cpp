@@ -73,7 +73,7 @@ using Case = fam::DiskPairCase<double>;
 // Options.
 
 struct Options {
-  int pairs_per_family = 2000;
+  int pairs_per_family = 10000;
   int reps = 5;               ///< batches per (pair, solver); the median is kept
   double batch_ns = 2000;     ///< target duration of one batch
   std::uint64_t seed = 20240601;
@@ -93,7 +93,7 @@ void printUsage(const char* argv0) {
       "  --quick       20 pairs per family, 3 batches: a smoke test of a few seconds\n"
       "  --out DIR     where report.csv and report.png (and report_pairs.csv) go\n"
       "                (default %s)\n"
-      "  --pairs N     pairs per family (default 2000; quick 20)\n"
+      "  --pairs N     pairs per family (default 10000; quick 20)\n"
       "  --reps R      timed batches per pair and solver, median kept (default 5; quick 3)\n"
       "  --batch-ns T  target length of one batch in ns (default 2000; quick 500)\n"
       "  --seed S      family seed (default 20240601)\n"
@@ -348,7 +348,11 @@ struct Summary {
 Summary summarise(const std::string& solver, const std::string& path, const std::string& family,
                   const std::vector<double>& ns, const std::vector<double>& err,
                   const std::string& worst_case) {
-  Summary s{solver, path, family, ns.size()};
+  Summary s;
+  s.solver = solver;
+  s.path = path;
+  s.family = family;
+  s.pairs = ns.size();
   s.worst_case = worst_case;
   s.median_ns = median(ns);
   s.p99_ns = percentile(ns, 0.99);
@@ -552,7 +556,26 @@ int main(int argc, char** argv) {
     }
   }
 
-  // 4. Headline figures (ratios of medians over all pairs, this run).
+  // 4. Per family: the exact solver against the closed form and the fastest
+  //    thin-cylinder GJK (h = 1e-6), ratios of medians within this run.
+  std::printf("\n## Per family: exact vs almohamad_selim and GJK h=1e-6 (medians, one run)\n\n");
+  std::printf("| family | exact median ns | exact p99 ns | almohamad_selim median ns | exact / "
+              "almohamad_selim | fastest GJK h=1e-6 median ns | GJK / exact |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|\n");
+  for (const std::string& family : family_order) {
+    const Summary& e = find("exact", family);
+    const Summary& a = find("almohamad_selim", family);
+    const Summary& g1 = find("gjk_libccd_h1e-6", family);
+    const Summary& g2 = find("gjk_indep_h1e-6", family);
+    const Summary& g = g1.median_ns <= g2.median_ns ? g1 : g2;
+    std::printf("| %s | %s | %s | %s | %.2fx | %s (%s) | %.1fx |\n", family.c_str(),
+                formatNs(e.median_ns).c_str(), formatNs(e.p99_ns).c_str(),
+                formatNs(a.median_ns).c_str(), e.median_ns / a.median_ns,
+                formatNs(g.median_ns).c_str(), g.solver == "gjk_libccd_h1e-6" ? "libccd" : "indep",
+                g.median_ns / e.median_ns);
+  }
+
+  // 5. Headline figures (ratios of medians over all pairs, this run).
   const Summary& exact = find("exact", "all");
   const Summary& as = find("almohamad_selim", "all");
   const Summary& exact_direct = find("exact_direct", "all");
@@ -576,7 +599,7 @@ int main(int argc, char** argv) {
               100 * (as.median_ns - as_direct.median_ns) / as.median_ns,
               formatNs(as.median_ns).c_str(), formatNs(as_direct.median_ns).c_str());
 
-  // 5. The exact solver against its promise, with the cases that break it.
+  // 6. The exact solver against its promise, with the cases that break it.
   std::size_t exact_index = 0;
   while (solvers[exact_index].name != "exact") ++exact_index;
   std::vector<const PairRecord*> violations;
@@ -594,7 +617,7 @@ int main(int argc, char** argv) {
   }
   if (violations.size() > 12) std::printf("  - ... (--pairs-csv lists them all)\n");
 
-  // 6. CSV files.
+  // 7. CSV files.
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
   const std::string csv_path = options.out_dir + "/report.csv";
@@ -629,7 +652,7 @@ int main(int argc, char** argv) {
     std::printf("wrote %s\n", pairs_path.c_str());
   }
 
-  // 7. The plot.
+  // 8. The plot.
   if (options.plot) {
     const std::string python = findPython();
     const std::string command = "'" + (python.empty() ? std::string("python3") : python) +

@@ -97,9 +97,9 @@ def main(argv):
     ax.set_ylim(ERROR_FLOOR / 4, max(y_top, 1e-2))
     ax.axhspan(ERROR_FLOOR / 4, ERROR_FLOOR, color="0.85", alpha=0.5, zorder=0)
     ax.axhline(ERROR_FLOOR, color="0.5", linewidth=0.8, linestyle=":", zorder=0)
-    ax.text(ax.get_xlim()[0] * 1.05, ERROR_FLOOR * 0.55,
+    ax.text(ax.get_xlim()[1] / 1.05, ERROR_FLOOR * 0.55,
             "floor 1e-17: errors of 0 and below the reference's accuracy are drawn here",
-            fontsize=8, color="0.3", va="center")
+            fontsize=8, color="0.3", va="center", ha="right")
     ax.axhline(EXACT_BOUND, color="tab:red", linewidth=0.8, linestyle="--", zorder=0)
     ax.text(ax.get_xlim()[0] * 1.05, EXACT_BOUND * 1.6, "1e-12: the exact solver's bound",
             fontsize=8, color="tab:red", va="bottom")

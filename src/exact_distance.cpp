@@ -32,9 +32,13 @@ constexpr double kStagnation = 4 * kEps * kEps;
 /// Iterations are capped; typical rim-rim cases need 3-6 (docs/exact_distance.md).
 constexpr int kMaxNewtonIterations = 64;
 
-/// Backtracking halvings per Newton step; 2^-30 of a step changes psi by less
-/// than its rounding, so giving up then means the rounding floor is reached.
-constexpr int kMaxLineSearchHalvings = 30;
+/// Exact line search along a Newton step (regula falsi on psi'): at most
+/// kMaxLineSearchSteps evaluations, stopping when psi' has fallen below
+/// kLineSearchFlatness of its initial slope or the bracket is
+/// kLineSearchResolution of the step (beyond that psi's rounding dominates).
+constexpr int kMaxLineSearchSteps = 60;
+constexpr double kLineSearchFlatness = 1e-6;
+constexpr double kLineSearchResolution = 1e-15;
 
 /// The secular equation |z(mu)| = r of the disk-constrained Newton model is
 /// solved to this relative accuracy (the step then lands on the rim to rounding,
@@ -42,14 +46,13 @@ constexpr int kMaxLineSearchHalvings = 30;
 constexpr double kSecularTolerance = 1e-15;
 constexpr int kMaxSecularIterations = 32;
 
-/// Armijo sufficient-increase fraction (standard choice).
-constexpr double kArmijoFraction = 1e-4;
-
 /// A face-case point whose projection falls outside the other disk's rim by at
-/// most this relative amount (rounding of a point computed exactly on the rim)
-/// is clamped onto the rim: it is the optimum up to that rounding, and the
-/// rim-rim iteration would meet a degenerate (flat) optimum there instead.
-constexpr double kRimSlack = 16 * kEps;
+/// most this many scene sizes is clamped onto the rim. The clamped pair is at
+/// most that much longer than the face height, which certifies a lower bound
+/// (section 2 of the document), so the answer stays 10x inside the 1e-12
+/// promise; without the slack, optima at the face/rim boundary (rim resting on
+/// rim) would go to the rim-rim iteration, whose problem is degenerate there.
+constexpr double kFaceSlack = internal::kTouchingTolerance;
 
 struct Solution {
   Vec3 p;  // on disk 1, frame 1
@@ -92,7 +95,8 @@ std::optional<Solution> faceOfDisk1(const PairInFrame1& pair) {
   Vec3 p(q.x(), q.y(), 0.0);
   const double radial = std::sqrt(p.x() * p.x() + p.y() * p.y());
   if (radial > pair.r1) {
-    if (radial > pair.r1 * (1.0 + kRimSlack)) return std::nullopt;
+    const double scale = std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
+    if (radial > pair.r1 + kFaceSlack * scale) return std::nullopt;
     p.head<2>() *= pair.r1 / radial;
   }
   return Solution{p, q, (q - p).norm(), DiskPairFeature::face1_rim2};
@@ -236,15 +240,41 @@ Solution rimRim(const PairInFrame1& pair, double scale) {
       slope = at.gradient.dot(step);
       if (!(slope < 0.0)) break;  // stationary to rounding
     }
+    // Exact line search: psi is convex along the step, so its derivative
+    // psi'(alpha) = gradient(s + alpha step).step is monotone. Full steps are
+    // taken when psi' (1) <= 0 (the usual Newton case); otherwise regula falsi
+    // (Illinois) finds the minimiser in (0, 1), typically the point where the
+    // step crosses from disk 2's face region into its rim region, which a
+    // one-piece quadratic model cannot see.
     double alpha = 1.0;
-    bool improved = false;
-    PointToDisk2 next;
-    for (int halving = 0; halving < kMaxLineSearchHalvings && !improved; ++halving) {
-      next = evaluate(pair, s + alpha * step);
-      improved = next.psi <= at.psi + kArmijoFraction * alpha * slope;
-      if (!improved) alpha *= 0.5;
+    PointToDisk2 next = evaluate(pair, s + step);
+    double derivative_hi = next.gradient.dot(step);
+    if (derivative_hi > 0.0) {
+      double lo = 0.0, hi = 1.0, derivative_lo = slope;
+      int last_side = 0;  // +1: last point had psi' > 0, -1: psi' <= 0
+      for (int k = 0; k < kMaxLineSearchSteps; ++k) {
+        alpha = (lo * derivative_hi - hi * derivative_lo) / (derivative_hi - derivative_lo);
+        if (!(alpha > lo && alpha < hi)) alpha = 0.5 * (lo + hi);
+        next = evaluate(pair, s + alpha * step);
+        const double derivative = next.gradient.dot(step);
+        if (derivative > 0.0) {
+          hi = alpha, derivative_hi = derivative;
+          if (last_side == 1) derivative_lo *= 0.5;  // Illinois: no stuck endpoint
+          last_side = 1;
+        } else {
+          lo = alpha, derivative_lo = derivative;
+          if (last_side == -1) derivative_hi *= 0.5;
+          last_side = -1;
+          if (derivative >= kLineSearchFlatness * slope) break;  // psi' ~ 0: done
+        }
+        if (hi - lo <= kLineSearchResolution * hi) break;
+      }
+      if (next.psi > at.psi) {  // hi-side point on exit: take the lo end instead
+        alpha = lo;
+        next = evaluate(pair, s + alpha * step);
+      }
     }
-    if (!improved) break;
+    if (!(next.psi < at.psi) || alpha == 0.0) break;  // no decrease: rounding floor
     s += alpha * step;
     // Stagnation: psi no longer decreases beyond rounding (degenerate optima are
     // flat along the rim); the pair is as good as double allows, the certificate

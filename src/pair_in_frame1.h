@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -67,27 +68,38 @@ inline std::optional<double> coplanarOverlapMidpoint(double D, double r1, double
   return 0.5 * (lo + hi);
 }
 
-/// A point shared by both disks (frame 1), or nullopt if they are apart.
+/// Disks closer than this many scene sizes count as touching: a touching pair
+/// (rim on rim, rim on face) built exactly in some frame is only touching to
+/// within rounding in any other, and the rim-rim iteration converges slowly at
+/// such degenerate optima. 1e-13 keeps the answer 10x inside the solver's 1e-12
+/// promise; the common point is then on both disks to this tolerance.
+constexpr double kTouchingTolerance = 1e-13;
+
+/// A point shared by both disks (frame 1), or nullopt if they are apart by more
+/// than kTouchingTolerance * scale (scale = max(1, r1 + r2 + |c|)).
 /// Crossing planes: the two chords on the planes' intersection line; parallel
 /// planes (s == 0): coplanar overlap along the line of centres.
 inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
+  const double slack =
+      kTouchingTolerance * std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
   const double cz = pair.c.z();
   // Disk 2 spans heights [cz - r2 s, cz + r2 s] over plane 1.
-  if (std::abs(cz) > pair.r2 * pair.s) return std::nullopt;
-  if (!(pair.s > 0.0)) {  // coplanar (cz == 0 here), or NaN input
-    if (!(cz == 0.0)) return std::nullopt;
+  if (!(std::abs(cz) <= pair.r2 * pair.s + slack)) return std::nullopt;  // also NaN
+  if (!(pair.s > 0.0)) {  // parallel planes, at most slack apart: coplanar
     const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
-    const auto t = coplanarOverlapMidpoint(D, pair.r1, pair.r2);
+    const auto t = coplanarOverlapMidpoint(D, pair.r1 + slack, pair.r2);
     if (!t) return std::nullopt;
-    if (D == 0.0) return Vec3::Zero();
-    return Vec3(pair.c.x() / D * *t, pair.c.y() / D * *t, 0.0);
+    const double along = std::clamp(*t, -pair.r1, pair.r1);
+    if (D == 0.0) return Vec3(0.0, 0.0, 0.5 * cz);
+    return Vec3(pair.c.x() / D * along, pair.c.y() / D * along, 0.5 * cz);
   }
   // Chord of disk 2 on plane 1, in disk 2's (a, b) coordinates: the line
-  // m.(a, b) = -cz, foot f = -cz m / s^2 (|f| <= r2 by the test above),
-  // direction t = perp(m) / s, half-length h2.
-  const Vec2 foot = (-cz / (pair.s * pair.s)) * pair.m;
-  const Vec2 along(-pair.m.y() / pair.s, pair.m.x() / pair.s);
+  // m.(a, b) = -cz, foot f = -cz m / s^2 (|f| <= r2 + slack/s, clamped to the
+  // disk), direction t = perp(m) / s, half-length h2.
+  Vec2 foot = (-cz / (pair.s * pair.s)) * pair.m;
   const double foot_norm = foot.norm();
+  if (foot_norm > pair.r2) foot *= pair.r2 / foot_norm;
+  const Vec2 along(-pair.m.y() / pair.s, pair.m.x() / pair.s);
   const double h2 = std::sqrt(std::max(0.0, (pair.r2 - foot_norm) * (pair.r2 + foot_norm)));
   // The same line in frame 1: X(tau) = X0 + tau * T with T horizontal and unit.
   const Vec3 X0 = pair.pointOfDisk2(foot);
@@ -96,12 +108,14 @@ inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
   const Vec2 T_xy(T.x(), T.y());
   const double tau_mid1 = -X0_xy.dot(T_xy) / T_xy.squaredNorm();
   const double offset1 = (X0_xy + tau_mid1 * T_xy).norm();  // line's distance to c1
-  if (offset1 > pair.r1) return std::nullopt;
-  const double h1 = std::sqrt((pair.r1 - offset1) * (pair.r1 + offset1)) / T_xy.norm();
+  if (offset1 > pair.r1 + slack) return std::nullopt;
+  const double h1 =
+      std::sqrt(std::max(0.0, (pair.r1 - offset1) * (pair.r1 + offset1))) / T_xy.norm();
   const double lo = std::max(-h2, tau_mid1 - h1);
   const double hi = std::min(h2, tau_mid1 + h1);
-  if (!(lo <= hi)) return std::nullopt;
-  return X0 + (0.5 * (lo + hi)) * T;
+  if (!(lo <= hi + slack)) return std::nullopt;
+  const double mid = std::clamp(0.5 * (lo + hi), -h2, h2);
+  return X0 + mid * T;
 }
 
 }  // namespace internal

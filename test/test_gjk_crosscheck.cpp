@@ -74,6 +74,8 @@ enum class PairKind {
   coplanar,         ///< parallel normals, common plane: Lemma 1 holds.
   nearly_parallel,  ///< normals 1e-8..1e-2 rad apart.
   perpendicular,    ///< hand-made T, edge-on and chain-link configurations.
+  rim_over_face,    ///< constructed: a rim point 1e-7..1e-1 above the other's face.
+  rim_rim,          ///< constructed: nearest points on both rims, 1e-7..1e-1 apart.
   counterexample,   ///< facts.md's A and B, where Lemma 1 fails.
 };
 
@@ -295,6 +297,56 @@ const std::vector<PairSpec>& allPairSpecs() {
         spec.X_W2 = makePose(R2, c2);
         out.push_back(spec);
       }
+    }
+    // Constructed close pairs (distance known by the KKT conditions of this
+    // convex problem, but only the bracket is checked here): disk 1 at the
+    // origin with normal +z, then a random common motion.
+    for (int i = 0; i < kDegeneratePairsPerFamily; ++i) {
+      PairSpec spec;
+      spec.kind = PairKind::rim_over_face;
+      spec.name = "rim over face #" + std::to_string(i);
+      spec.r1 = randomRadius();
+      spec.r2 = randomRadius();
+      const double separation = std::exp(random.uniform(std::log(1e-7), std::log(1e-1)));
+      Matrix3d R2 = random.rotation();
+      while (std::hypot(R2(0, 2), R2(1, 2)) < 0.05) R2 = random.rotation();  // not parallel
+      // Disk 2's lowest rim point is c2 - r2 u, u the unit in-plane part of +z;
+      // put it `separation` above a point well inside disk 1.
+      const Vector3d up = Vector3d::UnitZ();
+      const Vector3d u = (up - up.dot(R2.col(2)) * R2.col(2)).normalized();
+      const double foot_angle = random.uniform(0, 2 * M_PI);
+      const double foot_radius = 0.9 * spec.r1 * std::sqrt(random.uniform01());
+      const Vector3d foot(foot_radius * std::cos(foot_angle), foot_radius * std::sin(foot_angle), 0);
+      const double side = random.uniform01() < 0.5 ? 1.0 : -1.0;  // above or below disk 1
+      const Pose3d X_MW = makePose(random.rotation(), random.inBall(2.0));
+      spec.X_W1 = X_MW * makePose(Matrix3d::Identity(), Vector3d::Zero());
+      spec.X_W2 = X_MW * makePose(R2, foot + side * (separation * up + spec.r2 * u));
+      out.push_back(spec);
+    }
+    for (int i = 0; i < kDegeneratePairsPerFamily; ++i) {
+      PairSpec spec;
+      spec.kind = PairKind::rim_rim;
+      spec.name = "rim-rim #" + std::to_string(i);
+      spec.r1 = randomRadius();
+      spec.r2 = randomRadius();
+      const double separation = std::exp(random.uniform(std::log(1e-7), std::log(1e-1)));
+      // p on rim 1 at angle a; w = cos(psi) rho1 + sin(psi) z lies in disk 1's
+      // normal cone at p (cos(psi) > 0); q = p + separation w must be the point of
+      // disk 2 extreme along -w, so c2 = q - r2 P2(-w)/|P2 w|.
+      const double a = random.uniform(0, 2 * M_PI), psi = random.uniform(-1.4, 1.4);
+      const Vector3d rho1(std::cos(a), std::sin(a), 0);
+      const Vector3d w = std::cos(psi) * rho1 + std::sin(psi) * Vector3d::UnitZ();
+      Matrix3d R2 = random.rotation();
+      Vector3d minus_w_in_plane = -w + w.dot(R2.col(2)) * R2.col(2);
+      while (minus_w_in_plane.norm() < 0.05) {  // w nearly normal to disk 2: redraw
+        R2 = random.rotation();
+        minus_w_in_plane = -w + w.dot(R2.col(2)) * R2.col(2);
+      }
+      const Vector3d q = spec.r1 * rho1 + separation * w;
+      const Pose3d X_MW = makePose(random.rotation(), random.inBall(2.0));
+      spec.X_W1 = X_MW * makePose(Matrix3d::Identity(), Vector3d::Zero());
+      spec.X_W2 = X_MW * makePose(R2, q - spec.r2 * minus_w_in_plane.normalized());
+      out.push_back(spec);
     }
     return out;
   }();

@@ -99,13 +99,16 @@ endif()
 # 4. Run every way of linking and loading; report all, then fail if any failed.
 #    LD_LIBRARY_PATH/LD_PRELOAD are cleared so that only the binaries' RUNPATHs
 #    decide which libfcl_disk is loaded (the programs check it is the installed one).
+#    Each run is "program[:argument]".
 set(runs
   "consumer_disk_first"
   "consumer_fcl_first"
-  "consumer_dlopen_host;local"
-  "consumer_dlopen_host;global")
+  "consumer_dlopen_host:local"
+  "consumer_dlopen_host:global"
+  "consumer_dlopen_host_exports:local")
 set(failed)
-foreach(run IN LISTS runs)
+foreach(spec IN LISTS runs)
+  string(REPLACE ":" ";" run "${spec}")
   list(GET run 0 exe)
   set(args ${run})
   list(REMOVE_AT args 0)
