@@ -7,7 +7,6 @@
 #include <limits>
 #include <optional>
 
-#include <Eigen/Eigenvalues>
 
 #include "pair_in_frame1.h"
 
@@ -29,6 +28,23 @@ constexpr double kGapTolerance = 1e-14;
 /// in a step: rounding level, reached on flat, near-degenerate optima.
 constexpr double kStagnation = 4 * kEps * kEps;
 
+/// Relative Tikhonov term tau = kModelRegularisation * trace(H) of the
+/// disk-constrained model: negligible against any real curvature, it only pins
+/// the step along psi's flat directions.
+constexpr double kModelRegularisation = 1e-10;
+
+/// A point within this relative distance of disk 1's rim counts as on it.
+constexpr double kOnRimTolerance = 4 * kEps;
+
+/// The rim Newton step is tried while the gradient points inwards by less than
+/// this fraction of its length (rounding noise on a nearly tangential gradient).
+constexpr double kInwardGradientTolerance = 1e-3;
+
+/// Largest angle one rim Newton step may turn, and the halvings tried when a
+/// rim step does not decrease psi before falling back to the model step.
+constexpr double kMaxRimStep = 1.5707963267948966;  // pi / 2
+constexpr int kMaxRimHalvings = 8;
+
 /// Iterations are capped; typical rim-rim cases need 3-6 (docs/exact_distance.md).
 constexpr int kMaxNewtonIterations = 64;
 
@@ -40,9 +56,9 @@ constexpr int kMaxLineSearchSteps = 60;
 constexpr double kLineSearchFlatness = 1e-6;
 constexpr double kLineSearchResolution = 1e-15;
 
-/// The secular equation |z(mu)| = r of the disk-constrained Newton model is
-/// solved to this relative accuracy (the step then lands on the rim to rounding,
-/// after the final rescaling) within kMaxSecularIterations.
+/// The multiplier mu of the disk-constrained model step is found to this
+/// relative accuracy (the step then lands on the rim to rounding) within
+/// kMaxSecularIterations secant/bisection steps.
 constexpr double kSecularTolerance = 1e-15;
 constexpr int kMaxSecularIterations = 32;
 
@@ -158,58 +174,109 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   return out;
 }
 
-/// Minimiser of the model m(z) = b.z + z'Hz/2 over the disk |z| <= r, for H
-/// symmetric positive semidefinite (2x2): the interior Newton point if it lies in
-/// the disk, else the point on the circle where (H + mu I) z = -b with mu >= 0,
-/// found from the secular equation |z(mu)| = r (Moré & Sorensen's iteration on
-/// 1/|z(mu)| - 1/r, safeguarded by bisection).
-Vec2 minimiseModelOnDisk(const Eigen::Matrix2d& H, const Vec2& b, double r) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen;
-  eigen.computeDirect(H);
-  const Vec2 h = eigen.eigenvalues().cwiseMax(0.0);  // ascending; clip rounding below 0
-  const Eigen::Matrix2d V = eigen.eigenvectors();
-  const Vec2 beta = V.transpose() * b;
-  auto z_of = [&](double mu) { return Vec2(-beta.x() / (h.x() + mu), -beta.y() / (h.y() + mu)); };
-  if (h.x() > 0.0) {
-    const Vec2 z = z_of(0.0);
-    if (z.norm() <= r) return V * z;
-  }
-  // On the circle. |z(mu)| decreases on (0, inf) and |z(mu_hi)| <= r at
-  // mu_hi = |b|/r. Its limit at mu -> 0+ is infinite unless b has no component
-  // along a null eigenvector of H; if that limit is inside the disk we are in
-  // the "hard case": complete z along the null eigenvector to reach the circle.
-  double mu_lo = 0.0, mu_hi = b.norm() / r;
-  if (h.x() == 0.0 && beta.x() == 0.0) {
-    const double along_y = h.y() > 0.0 ? -beta.y() / h.y() : 0.0;
-    if (std::abs(along_y) <= r) {
-      return V * Vec2(std::sqrt(r * r - along_y * along_y), along_y);
+/// Exact line search along `step` from s: psi is convex along the segment, so
+/// psi'(alpha) = gradient(s + alpha step).step is monotone. Returns alpha *
+/// step for the minimiser over alpha in (0, 1]: the full step when psi'(1) <= 0,
+/// else regula falsi (Illinois) on psi', which finds e.g. the point where the
+/// step crosses from disk 2's face region into its rim region, a kink of psi''
+/// that a one-piece quadratic model cannot see. *at_end receives psi there.
+Vec2 exactLineSearch(const PairInFrame1& pair, const Vec2& s, const Vec2& step, double slope,
+                     PointToDisk2* at_end) {
+  PointToDisk2 next = evaluate(pair, s + step);
+  double derivative_hi = next.gradient.dot(step);
+  double alpha = 1.0;
+  if (derivative_hi > 0.0) {
+    double lo = 0.0, hi = 1.0, derivative_lo = slope;
+    PointToDisk2 at_lo = evaluate(pair, s);
+    int last_side = 0;  // +1: last point had psi' > 0, -1: psi' <= 0
+    for (int k = 0; k < kMaxLineSearchSteps; ++k) {
+      alpha = (lo * derivative_hi - hi * derivative_lo) / (derivative_hi - derivative_lo);
+      if (!(alpha > lo && alpha < hi)) alpha = 0.5 * (lo + hi);
+      next = evaluate(pair, s + alpha * step);
+      const double derivative = next.gradient.dot(step);
+      if (derivative > 0.0) {
+        hi = alpha, derivative_hi = derivative;
+        if (last_side == 1) derivative_lo *= 0.5;  // Illinois: no stuck endpoint
+        last_side = 1;
+      } else {
+        lo = alpha, derivative_lo = derivative, at_lo = next;
+        if (last_side == -1) derivative_hi *= 0.5;
+        last_side = -1;
+        if (derivative >= kLineSearchFlatness * slope) break;  // psi' ~ 0: done
+      }
+      if (hi - lo <= kLineSearchResolution * hi) break;
     }
+    if (next.psi > at_lo.psi) alpha = lo, next = at_lo;
   }
-  double mu = mu_hi;
+  *at_end = next;
+  return alpha * step;
+}
+
+/// Step delta minimising the regularised model g.delta + delta'(H + tau I)delta/2
+/// subject to |s + delta| <= r1, for H symmetric positive semidefinite (2x2).
+/// Written in delta (not in the point s + delta) so that small steps are not
+/// computed as differences of O(r1) numbers. tau > 0 makes the model strictly
+/// convex: along directions where psi is flat (its Hessian is rank one where x
+/// projects into disk 2's face) the step stays near s instead of wandering.
+/// delta(mu) = -(H + (tau + mu) I)^-1 (g + mu s) for the multiplier mu >= 0 of
+/// the disk; |s + delta(mu)| decreases in mu, so mu is found by safeguarded
+/// secant steps on f(mu) = |s + delta(mu)|^2 - r1^2 (computed as
+/// 2 s.delta + |delta|^2 + |s|^2 - r1^2, again free of cancellation).
+Vec2 stepOnDisk(const Eigen::Matrix2d& H, const Vec2& g, const Vec2& s, double r1) {
+  const double tau = kModelRegularisation * H.trace() + std::numeric_limits<double>::min();
+  auto step_for = [&](double mu) -> Vec2 {
+    const double a = H(0, 0) + tau + mu, b = H(0, 1), d = H(1, 1) + tau + mu;
+    const Vec2 rhs = g + mu * s;
+    return Vec2(-(d * rhs.x() - b * rhs.y()), -(a * rhs.y() - b * rhs.x())) / (a * d - b * b);
+  };
+  const double slack = s.squaredNorm() - r1 * r1;  // <= 0 for a feasible s
+  auto excess = [&](const Vec2& delta) { return 2.0 * s.dot(delta) + delta.squaredNorm() + slack; };
+  Vec2 delta = step_for(0.0);
+  double f_lo = excess(delta);
+  if (f_lo <= 0.0) return delta;  // the Newton step stays in the disk
+  // Bracket: at mu_hi = |g + mu s|/r1-ish the step cannot leave the disk.
+  double mu_lo = 0.0, mu_hi = (g.norm() + tau * s.norm()) / r1 + r1 * 0.0;
+  mu_hi = std::max(mu_hi, tau);
+  Vec2 delta_hi = step_for(mu_hi);
+  double f_hi = excess(delta_hi);
+  for (int grow = 0; f_hi > 0.0 && grow < kMaxSecularIterations; ++grow) {
+    mu_lo = mu_hi, f_lo = f_hi;
+    mu_hi *= 4.0;
+    delta_hi = step_for(mu_hi);
+    f_hi = excess(delta_hi);
+  }
+  Vec2 best = delta_hi;  // feasible end of the bracket
+  int last_side = 0;      // Illinois: halve a stale endpoint's value
   for (int iteration = 0; iteration < kMaxSecularIterations; ++iteration) {
-    const Vec2 z = z_of(mu);
-    const double norm = z.norm();
-    if (std::abs(norm - r) <= kSecularTolerance * r) break;
-    if (norm > r) mu_lo = mu; else mu_hi = mu;
-    // Newton on phi(mu) = 1/|z| - 1/r, which is nearly linear in mu.
-    const Vec2 dz = Vec2(z.x() / (h.x() + mu), z.y() / (h.y() + mu));  // -dz/dmu
-    const double derivative = z.dot(dz) / (norm * norm * norm);     // phi'(mu)
-    double next = mu - (1.0 / norm - 1.0 / r) / derivative;
-    if (!(next > mu_lo && next < mu_hi)) next = 0.5 * (mu_lo + mu_hi);
-    mu = next;
+    double mu = mu_hi - f_hi * (mu_hi - mu_lo) / (f_hi - f_lo);
+    if (!(mu > mu_lo && mu < mu_hi)) mu = 0.5 * (mu_lo + mu_hi);
+    delta = step_for(mu);
+    const double f = excess(delta);
+    if (f > 0.0) {
+      mu_lo = mu, f_lo = f;
+      if (last_side == 1) f_hi *= 0.5;
+      last_side = 1;
+    } else {
+      mu_hi = mu, f_hi = f, best = delta;
+      if (last_side == -1) f_lo *= 0.5;
+      last_side = -1;
+      if (f >= -kSecularTolerance * r1 * r1) break;
+    }
+    if (mu_hi - mu_lo <= kSecularTolerance * mu_hi) break;
   }
-  Vec2 z = z_of(mu);
-  return V * (z * (r / z.norm()));  // exactly on the circle
+  return best;
 }
 
 /// Rim-rim case: minimise the convex psi(s) = dist(x(s), K2)^2 / 2 over disk 1
-/// (|s| <= r1) by Newton's method with the disk constraint in the model: each
-/// step minimises psi's quadratic model over the disk exactly, then backtracks
-/// on psi. Iterates stay feasible and psi decreases, so by convexity they cannot
-/// stall on the rim's spurious local minima; near the optimum the steps are full
-/// Newton steps with the rim's curvature, hence quadratic convergence. Each
-/// iterate gives a feasible pair (upper bound) and the duality certificate (lower
-/// bound); stop when they agree to kGapTolerance * scale.
+/// (|s| <= r1). On the rim with a non-negative multiplier (the usual final
+/// phase) Newton runs along the rim in the angle, with the rim's curvature
+/// lambda in the second derivative; elsewhere (inside the disk, or on the rim
+/// where moving inwards decreases psi, i.e. at a spurious minimum along the rim)
+/// the step minimises psi's quadratic model over the disk, followed by an exact
+/// line search. Iterates stay feasible and psi decreases, so by convexity they
+/// reach the global minimum. Each iterate gives a feasible pair (upper bound)
+/// and the duality certificate (lower bound); stop when they agree to
+/// kGapTolerance * scale.
 Solution rimRim(const PairInFrame1& pair, double scale) {
   const double r1 = pair.r1;
   // Start: the point of disk 1 nearest disk 2's centre.
@@ -227,66 +294,51 @@ Solution rimRim(const PairInFrame1& pair, double scale) {
       best.iterations = iteration;
       return best;
     }
-    // Model in z = s + step: b = gradient - H s.
-    const Vec2 target = minimiseModelOnDisk(at.hessian, at.gradient - at.hessian * s, r1);
-    Vec2 step = target - s;
-    double slope = at.gradient.dot(step);
-    if (!(slope < 0.0)) {
-      // The model step is no descent (H nearly singular, rounding): fall back to
-      // the projected gradient step, a descent direction at any non-optimal point.
-      Vec2 projected = s - at.gradient;
-      if (projected.norm() > r1) projected *= r1 / projected.norm();
-      step = projected - s;
-      slope = at.gradient.dot(step);
+    const double radius = s.norm();
+    const Vec2 radial = radius > 0.0 ? Vec2(s / radius) : Vec2::UnitX();
+    const Vec2 tangent(-radial.y(), radial.x());
+    // Multiplier of |s| <= r1: lambda >= 0 iff -gradient points out of the disk.
+    const double lambda = -at.gradient.dot(radial) / r1;
+    PointToDisk2 next;
+    Vec2 s_next;
+    bool moved = false;
+    // On the rim, Newton along it unless the gradient clearly points inwards
+    // (a spurious minimum along the rim); a rim step that fails to decrease psi
+    // falls through to the model step, which may leave the rim.
+    if (radius >= r1 * (1.0 - kOnRimTolerance) &&
+        lambda >= -kInwardGradientTolerance * at.gradient.norm() / r1) {
+      // Newton in the rim angle theta: psi' = r1 g.t, psi'' = r1^2 (t'Ht + lambda).
+      const double slope = r1 * at.gradient.dot(tangent);
+      const double curvature =
+          r1 * r1 * (tangent.dot(at.hessian * tangent) + std::max(lambda, 0.0));
+      double dtheta = curvature > 0.0 ? -slope / curvature : -std::copysign(kMaxRimStep, slope);
+      dtheta = std::clamp(dtheta, -kMaxRimStep, kMaxRimStep);
+      for (int halving = 0; halving < kMaxRimHalvings && !moved; ++halving, dtheta *= 0.5) {
+        s_next = r1 * (std::cos(dtheta) * radial + std::sin(dtheta) * tangent);
+        next = evaluate(pair, s_next);
+        moved = next.psi < at.psi;
+      }
+    }
+    if (!moved) {
+      const Vec2 step = stepOnDisk(at.hessian, at.gradient, s, r1);
+      const double slope = at.gradient.dot(step);
       if (!(slope < 0.0)) break;  // stationary to rounding
+      s_next = s + exactLineSearch(pair, s, step, slope, &next);
+      moved = next.psi < at.psi;
     }
-    // Exact line search: psi is convex along the step, so its derivative
-    // psi'(alpha) = gradient(s + alpha step).step is monotone. Full steps are
-    // taken when psi' (1) <= 0 (the usual Newton case); otherwise regula falsi
-    // (Illinois) finds the minimiser in (0, 1), typically the point where the
-    // step crosses from disk 2's face region into its rim region, which a
-    // one-piece quadratic model cannot see.
-    double alpha = 1.0;
-    PointToDisk2 next = evaluate(pair, s + step);
-    double derivative_hi = next.gradient.dot(step);
-    if (derivative_hi > 0.0) {
-      double lo = 0.0, hi = 1.0, derivative_lo = slope;
-      int last_side = 0;  // +1: last point had psi' > 0, -1: psi' <= 0
-      for (int k = 0; k < kMaxLineSearchSteps; ++k) {
-        alpha = (lo * derivative_hi - hi * derivative_lo) / (derivative_hi - derivative_lo);
-        if (!(alpha > lo && alpha < hi)) alpha = 0.5 * (lo + hi);
-        next = evaluate(pair, s + alpha * step);
-        const double derivative = next.gradient.dot(step);
-        if (derivative > 0.0) {
-          hi = alpha, derivative_hi = derivative;
-          if (last_side == 1) derivative_lo *= 0.5;  // Illinois: no stuck endpoint
-          last_side = 1;
-        } else {
-          lo = alpha, derivative_lo = derivative;
-          if (last_side == -1) derivative_hi *= 0.5;
-          last_side = -1;
-          if (derivative >= kLineSearchFlatness * slope) break;  // psi' ~ 0: done
-        }
-        if (hi - lo <= kLineSearchResolution * hi) break;
-      }
-      if (next.psi > at.psi) {  // hi-side point on exit: take the lo end instead
-        alpha = lo;
-        next = evaluate(pair, s + alpha * step);
-      }
-    }
-    if (!(next.psi < at.psi) || alpha == 0.0) break;  // no decrease: rounding floor
-    s += alpha * step;
+    if (!moved) break;  // no representable decrease: rounding floor
+    const double decrease = at.psi - next.psi;
+    s = s_next;
+    at = next;
     // Stagnation: psi no longer decreases beyond rounding (degenerate optima are
-    // flat along the rim); the pair is as good as double allows, the certificate
-    // says how well it is proven.
-    if (at.psi - next.psi <= kStagnation * scale * scale) {
-      at = next;
-      const Vec3 x_last(s.x(), s.y(), 0.0);
+    // flat along the rim); the certificate says how well the pair is proven.
+    if (decrease <= kStagnation * scale * scale) {
       const double last = std::sqrt(2.0 * at.psi);
-      if (last <= best.distance) best = {x_last, at.q, last, DiskPairFeature::rim_rim, iteration};
+      if (last <= best.distance) {
+        best = {Vec3(s.x(), s.y(), 0.0), at.q, last, DiskPairFeature::rim_rim, iteration};
+      }
       break;
     }
-    at = next;
   }
   return best;  // the best certified pair found (see lower_bound)
 }
