@@ -24,9 +24,12 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 /// rounding noise (a few ulps) of evaluating both bounds.
 constexpr double kGapTolerance = 1e-14;
 
-/// Newton also stops when psi decreases by less than this (relative to scale^2)
-/// in a step: rounding level, reached on flat, near-degenerate optima.
+/// Newton also stops when psi decreases by less than kStagnation * scale^2 in a
+/// step (no progress at all: flat, near-degenerate optima; a larger threshold
+/// would stop the slow but real progress on near-parallel rims a few 1e-10
+/// apart), or when a rim step is below kStepAtRounding * scale.
 constexpr double kStagnation = 4 * kEps * kEps;
+constexpr double kStepAtRounding = 4 * kEps;
 
 /// Relative Tikhonov term tau = kModelRegularisation * trace(H) of the
 /// disk-constrained model: negligible against any real curvature, it only pins
@@ -44,6 +47,10 @@ constexpr double kInwardGradientTolerance = 1e-3;
 /// rim step does not decrease psi before falling back to the model step.
 constexpr double kMaxRimStep = 1.5707963267948966;  // pi / 2
 constexpr int kMaxRimHalvings = 8;
+
+/// The certificate is evaluated once a rim Newton step is below this many
+/// scene sizes (then the gap is at most about its square), or off the rim.
+constexpr double kCertifyStep = 1e-6;
 
 /// Iterations are capped; typical rim-rim cases need 3-6 (docs/exact_distance.md).
 constexpr int kMaxNewtonIterations = 64;
@@ -76,6 +83,7 @@ struct Solution {
   double distance;
   DiskPairFeature feature;
   int iterations = 0;
+  double lower_bound = 0.0;  // the certificate (section 2 of the document)
 };
 
 /// The point of the coplanar/parallel overlap of the projections of the disks,
@@ -93,7 +101,7 @@ std::optional<Vec2> overlapOfProjections(const PairInFrame1& pair) {
 /// Face case of disk 1: p inside disk 1's face, q the point of disk 2 nearest
 /// plane 1. Valid (hence optimal, by the KKT conditions) iff disk 2 lies strictly
 /// on one side of plane 1 and q projects into disk 1.
-std::optional<Solution> faceOfDisk1(const PairInFrame1& pair) {
+std::optional<Solution> faceOfDisk1(const PairInFrame1& pair, double scale) {
   const double cz = pair.c.z();
   const double lowest_height = std::abs(cz) - pair.r2 * pair.s;
   if (!(lowest_height > 0.0)) return std::nullopt;
@@ -111,7 +119,6 @@ std::optional<Solution> faceOfDisk1(const PairInFrame1& pair) {
   Vec3 p(q.x(), q.y(), 0.0);
   const double radial = std::sqrt(p.x() * p.x() + p.y() * p.y());
   if (radial > pair.r1) {
-    const double scale = std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
     if (radial > pair.r1 + kFaceSlack * scale) return std::nullopt;
     p.head<2>() *= pair.r1 / radial;
   }
@@ -125,19 +132,17 @@ double lowerBound(const PairInFrame1& pair, const Vec3& w_hat) {
 
 /// The certificate at the face normals +-n1, +-n2, where g has its kinks: there
 /// g is only Lipschitz, so near-face optima are certified better by the normal
-/// itself than by a slightly misdirected separation direction.
+/// itself than by a slightly misdirected separation direction. Constant per pair.
 double faceLowerBound(const PairInFrame1& pair) {
   const double over_plane1 = std::abs(pair.c.z()) - pair.r2 * pair.s;
   const double over_plane2 = std::abs(pair.R.col(2).dot(pair.c)) - pair.r1 * pair.s;
-  return std::max(over_plane1, over_plane2);
+  return std::max({0.0, over_plane1, over_plane2});
 }
 
-/// The best certificate for a pair with separation q - p (frame 1).
-double certifiedLowerBound(const PairInFrame1& pair, const Vec3& separation) {
+/// The certificate along the separation q - p of a pair (frame 1).
+double separationLowerBound(const PairInFrame1& pair, const Vec3& separation) {
   const double length = separation.norm();
-  const double along_separation =
-      length > 0.0 ? lowerBound(pair, separation / length) : 0.0;
-  return std::max({0.0, along_separation, faceLowerBound(pair)});
+  return length > 0.0 ? lowerBound(pair, separation / length) : 0.0;
 }
 
 /// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1, with its gradient
@@ -268,53 +273,70 @@ Vec2 stepOnDisk(const Eigen::Matrix2d& H, const Vec2& g, const Vec2& s, double r
 }
 
 /// Rim-rim case: minimise the convex psi(s) = dist(x(s), K2)^2 / 2 over disk 1
-/// (|s| <= r1). On the rim with a non-negative multiplier (the usual final
-/// phase) Newton runs along the rim in the angle, with the rim's curvature
-/// lambda in the second derivative; elsewhere (inside the disk, or on the rim
-/// where moving inwards decreases psi, i.e. at a spurious minimum along the rim)
-/// the step minimises psi's quadratic model over the disk, followed by an exact
-/// line search. Iterates stay feasible and psi decreases, so by convexity they
-/// reach the global minimum. Each iterate gives a feasible pair (upper bound)
-/// and the duality certificate (lower bound); stop when they agree to
-/// kGapTolerance * scale.
-Solution rimRim(const PairInFrame1& pair, double scale) {
+/// (|s| <= r1). On the rim with a non-negative multiplier (the usual case) Newton
+/// runs along the rim in the angle, with the rim's curvature lambda in the
+/// second derivative; elsewhere (inside the disk, or on the rim where moving
+/// inwards decreases psi, i.e. at a spurious minimum along the rim) the step
+/// minimises psi's quadratic model over the disk, followed by an exact line
+/// search. Iterates stay feasible and psi decreases, so by convexity they reach
+/// the global minimum. Each iterate is a feasible pair (an upper bound); once
+/// the steps are small the duality certificate (a lower bound) is evaluated and
+/// the iteration stops when the two agree to kGapTolerance * scale.
+Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound) {
   const double r1 = pair.r1;
-  // Start: the point of disk 1 nearest disk 2's centre.
-  Vec2 s(pair.c.x(), pair.c.y());
-  if (s.norm() > r1) s *= r1 / s.norm();
+  // Start on the rim, towards disk 2's centre (the optimum is on the rim).
+  const double c_xy = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
+  Vec2 s = c_xy > 0.0 ? Vec2(pair.c.x() * (r1 / c_xy), pair.c.y() * (r1 / c_xy)) : Vec2(r1, 0.0);
   PointToDisk2 at = evaluate(pair, s);
-  Solution best{Vec3(s.x(), s.y(), 0.0), at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim};
   const double gap_tolerance = kGapTolerance * scale;
+  const double certify_below = kCertifyStep * scale;
+  const double tiny_psi = 0.5 * gap_tolerance * gap_tolerance;  // distance within tolerance of 0
+  Solution current{Vec3(s.x(), s.y(), 0.0), at.q, 0.0, DiskPairFeature::rim_rim};
+  auto finish = [&](int iteration) {
+    current.p = Vec3(s.x(), s.y(), 0.0);
+    current.q = at.q;
+    current.distance = std::sqrt(2.0 * at.psi);
+    current.iterations = iteration;
+    current.lower_bound = std::max(face_lower_bound, separationLowerBound(pair, at.q - current.p));
+    return current;
+  };
   for (int iteration = 1; iteration <= kMaxNewtonIterations; ++iteration) {
-    const Vec3 x(s.x(), s.y(), 0.0);
-    const double upper = std::sqrt(2.0 * at.psi);
-    if (upper <= best.distance) best = {x, at.q, upper, DiskPairFeature::rim_rim, iteration};
-    const double lower = certifiedLowerBound(pair, at.q - x);
-    if (best.distance - lower <= gap_tolerance) {
-      best.iterations = iteration;
-      return best;
-    }
     const double radius = s.norm();
-    const Vec2 radial = radius > 0.0 ? Vec2(s / radius) : Vec2::UnitX();
+    const Vec2 radial = s / radius;  // |s| > 0: iterates stay near the rim or inside it
     const Vec2 tangent(-radial.y(), radial.x());
     // Multiplier of |s| <= r1: lambda >= 0 iff -gradient points out of the disk.
     const double lambda = -at.gradient.dot(radial) / r1;
-    PointToDisk2 next;
-    Vec2 s_next;
-    bool moved = false;
-    // On the rim, Newton along it unless the gradient clearly points inwards
-    // (a spurious minimum along the rim); a rim step that fails to decrease psi
-    // falls through to the model step, which may leave the rim.
-    if (radius >= r1 * (1.0 - kOnRimTolerance) &&
-        lambda >= -kInwardGradientTolerance * at.gradient.norm() / r1) {
+    const bool on_rim = radius >= r1 * (1.0 - kOnRimTolerance) &&
+                        lambda >= -kInwardGradientTolerance * at.gradient.norm() / r1;
+    double dtheta = 0.0;
+    if (on_rim) {
       // Newton in the rim angle theta: psi' = r1 g.t, psi'' = r1^2 (t'Ht + lambda).
       const double slope = r1 * at.gradient.dot(tangent);
       const double curvature =
           r1 * r1 * (tangent.dot(at.hessian * tangent) + std::max(lambda, 0.0));
-      double dtheta = curvature > 0.0 ? -slope / curvature : -std::copysign(kMaxRimStep, slope);
+      dtheta = curvature > 0.0 ? -slope / curvature : -std::copysign(kMaxRimStep, slope);
       dtheta = std::clamp(dtheta, -kMaxRimStep, kMaxRimStep);
+    }
+    // Certify once the iteration has (nearly) converged: Newton converges
+    // quadratically, so the gap closes within a step or two of here.
+    if (!on_rim || std::abs(dtheta) * r1 <= certify_below || at.psi <= tiny_psi) {
+      const Vec3 x(s.x(), s.y(), 0.0);
+      const double lower = std::max(face_lower_bound, separationLowerBound(pair, at.q - x));
+      if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration);
+      // Converged to rounding: the step no longer moves the point. The
+      // certificate's own rounding grows like scale * (eps * scale / d)^2 for
+      // small distances d, so it may not reach kGapTolerance; it is reported.
+      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) return finish(iteration);
+    }
+    PointToDisk2 next;
+    Vec2 s_next;
+    bool moved = false;
+    if (on_rim) {
+      // Rotate by atan(dtheta): normalising s + dtheta r1 t costs no trigonometry
+      // and agrees with the rotation to third order, which keeps Newton quadratic.
       for (int halving = 0; halving < kMaxRimHalvings && !moved; ++halving, dtheta *= 0.5) {
-        s_next = r1 * (std::cos(dtheta) * radial + std::sin(dtheta) * tangent);
+        const Vec2 turned = radial + dtheta * tangent;
+        s_next = turned * (r1 / turned.norm());
         next = evaluate(pair, s_next);
         moved = next.psi < at.psi;
       }
@@ -332,35 +354,33 @@ Solution rimRim(const PairInFrame1& pair, double scale) {
     at = next;
     // Stagnation: psi no longer decreases beyond rounding (degenerate optima are
     // flat along the rim); the certificate says how well the pair is proven.
-    if (decrease <= kStagnation * scale * scale) {
-      const double last = std::sqrt(2.0 * at.psi);
-      if (last <= best.distance) {
-        best = {Vec3(s.x(), s.y(), 0.0), at.q, last, DiskPairFeature::rim_rim, iteration};
-      }
-      break;
-    }
+    if (decrease <= kStagnation * scale * scale) return finish(iteration);
   }
-  return best;  // the best certified pair found (see lower_bound)
+  return finish(kMaxNewtonIterations);  // the certificate says how well it is proven
 }
 
 Solution solveInFrame1(const PairInFrame1& pair) {
   const double scale = std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
   if (!std::isfinite(scale) || !pair.R.allFinite()) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    return {Vec3::Constant(nan), Vec3::Constant(nan), nan, DiskPairFeature::rim_rim};
+    return {Vec3::Constant(nan), Vec3::Constant(nan), nan, DiskPairFeature::rim_rim, 0, nan};
   }
   if (const auto common = internal::commonPoint(pair)) {
     return {*common, *common, 0.0, DiskPairFeature::intersecting};
   }
-  if (auto face1 = faceOfDisk1(pair)) return *face1;
+  const double face_lower_bound = faceLowerBound(pair);
+  if (auto face1 = faceOfDisk1(pair, scale)) {
+    face1->lower_bound = face_lower_bound;
+    return *face1;
+  }
   const PairInFrame1 seen_from_2 = pair.swapped();
-  if (auto face2 = faceOfDisk1(seen_from_2)) {
+  if (auto face2 = faceOfDisk1(seen_from_2, scale)) {
     // Map back from disk 2's frame: x_1 = c + R x_2.
     const Vec3 p = pair.c + pair.R * face2->q;
     const Vec3 q = pair.c + pair.R * face2->p;
-    return {p, q, face2->distance, DiskPairFeature::rim1_face2};
+    return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
   }
-  return rimRim(pair, scale);
+  return rimRim(pair, scale, face_lower_bound);
 }
 
 }  // namespace
@@ -371,16 +391,13 @@ DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S 
   const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
   const Solution solution = solveInFrame1(pair);
 
-  const double lower = solution.distance > 0.0 ? certifiedLowerBound(pair, solution.q - solution.p)
-                                              : 0.0;
-
   const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
   const Vec3 c1 = X_W1.translation().template cast<double>();
   DiskDistanceResult<S> result;
   result.distance = S(solution.distance);
   result.p_W1 = (c1 + R_W1 * solution.p).template cast<S>();
   result.p_W2 = (c1 + R_W1 * solution.q).template cast<S>();
-  result.lower_bound = S(lower);
+  result.lower_bound = S(std::min(solution.lower_bound, solution.distance));
   result.feature = solution.feature;
   result.iterations = solution.iterations;
   return result;

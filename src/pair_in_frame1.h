@@ -85,7 +85,9 @@ inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
   const double cz = pair.c.z();
   // Disk 2 spans heights [cz - r2 s, cz + r2 s] over plane 1.
   if (!(std::abs(cz) <= pair.r2 * pair.s + slack)) return std::nullopt;  // also NaN
-  if (!(pair.s > 0.0)) {  // parallel planes, at most slack apart: coplanar
+  // Parallel to within the tolerance (|tilt| * radius <= slack): coplanar. The
+  // chord construction below divides by s and is meaningless at rounding level.
+  if (!(pair.s * std::max(pair.r1, pair.r2) > slack)) {
     const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
     const auto t = coplanarOverlapMidpoint(D, pair.r1 + slack, pair.r2);
     if (!t) return std::nullopt;
