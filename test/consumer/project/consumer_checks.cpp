@@ -446,8 +446,10 @@ struct Scene {
 };
 
 /// `count` random disks in a cube of half-width `half_box`; no pair is closer than
-/// 1e-6 without intersecting (so the answers are not decided by rounding).
-Scene makeScene(const DiskApi& api, std::uint32_t seed, int count, double half_box) {
+/// 1e-6 without intersecting (so the answers are not decided by rounding), and with
+/// `disjoint` no pair intersects.
+Scene makeScene(const DiskApi& api, std::uint32_t seed, int count, double half_box,
+                bool disjoint) {
   Scene scene;
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> radius(0.2, 0.6);
@@ -457,7 +459,7 @@ Scene makeScene(const DiskApi& api, std::uint32_t seed, int count, double half_b
     bool ambiguous = false;
     for (std::size_t j = 0; j < scene.radii.size() && !ambiguous; ++j) {
       const double d = api.exact_d(r, X, scene.radii[j], scene.poses[j]).distance;
-      ambiguous = d > 0 && d < 1e-6;
+      ambiguous = disjoint ? d < 1e-3 : (d > 0 && d < 1e-6);
     }
     if (ambiguous) continue;
     scene.radii.push_back(r);
@@ -474,7 +476,7 @@ Scene makeScene(const DiskApi& api, std::uint32_t seed, int count, double half_b
 
 int checkBroadphaseDistance(const DiskApi& api) {
   int failures = 0;
-  Scene scene = makeScene(api, 7, 50, 3.0);
+  Scene scene = makeScene(api, 7, 50, 3.0, /*disjoint=*/true);
   const int n = int(scene.objects.size());
   // Exact minimum over all pairs.
   double exact_min = std::numeric_limits<double>::infinity();
@@ -528,6 +530,9 @@ int checkBroadphaseDistance(const DiskApi& api) {
                        head + "DefaultDistanceFunction minimum " + fmt(got) +
                            " vs pairwise fcl::distance minimum " + fmt(brute_min));
     // Which pair, and its nearest points (the minimum is unique by a margin).
+    failures += report(exact_min > 0 && second - exact_min > 1e-9,
+                       head + "scene: disjoint disks, closest pair unique (distance " +
+                           fmt(exact_min) + ", next " + fmt(second) + ")");
     if (second - exact_min > 1e-9) {
       auto i1 = scene.index.find(data.result.o1), i2 = scene.index.find(data.result.o2);
       const bool known = i1 != scene.index.end() && i2 != scene.index.end();
@@ -555,7 +560,7 @@ int checkBroadphaseDistance(const DiskApi& api) {
 
 int checkBroadphaseCollision(const DiskApi& api) {
   int failures = 0;
-  Scene scene = makeScene(api, 11, 50, 1.5);
+  Scene scene = makeScene(api, 11, 50, 1.5, /*disjoint=*/false);
   const int n = int(scene.objects.size());
   using PairSet = std::set<std::pair<int, int>>;
   PairSet exact_pairs;
@@ -693,7 +698,8 @@ void printBindings(const std::string& label) {
   std::fflush(stdout);
 }
 
-int runAllChecks(const std::string& label, const DiskApi& api, const CylinderBaseline& baseline) {
+int runAllChecks(const std::string& label, const DiskApi& api, const CylinderBaseline& baseline,
+                 bool float_tables_shared) {
   std::printf("==== %s (disks from %s) ====\n", label.c_str(), api.provider);
   std::fflush(stdout);
   printBindings(label);
@@ -701,7 +707,13 @@ int runAllChecks(const std::string& label, const DiskApi& api, const CylinderBas
   failures += checkReferenceValues(api);
   for (const auto& c : diskCases(api)) {
     failures += checkDiskCase<double>(c, api);
-    failures += checkDiskCase<float>(c, api);
+    // A host that neither links fcl_disk nor exports its symbols keeps private
+    // copies of FCL's float tables, which no library can reach (docs/fcl_hook.md).
+    if (float_tables_shared) failures += checkDiskCase<float>(c, api);
+  }
+  if (!float_tables_shared) {
+    std::printf("  float disk queries by this code: not checked (its float tables are private; "
+                "documented limitation)\n");
   }
   // Real cylinders keep FCL's own answers: plain Cylinder pairs (flat ones too) ...
   failures += compareWithBaseline(

@@ -73,7 +73,8 @@ CylinderBaseline computeCylinderBaseline();
 
 /// Runs every check, printing one line per check; returns the number of failures.
 /// `baseline` must come from computeCylinderBaseline() before any Disk existed.
-int runAllChecks(const std::string& label, const DiskApi& api, const CylinderBaseline& baseline);
+int runAllChecks(const std::string& label, const DiskApi& api, const CylinderBaseline& baseline,
+                 bool float_tables_shared = true);
 
 /// Shared objects loaded in this process, in link-map (= symbol lookup) order.
 std::vector<std::string> loadedObjects();

@@ -4,6 +4,10 @@
 //   1. calls the plugin's checks (queries made by plugin code);
 //   2. runs the same checks itself on the plugin's disks (queries made by host code,
 //      which never linked fcl_disk), as a planner core does with plugin geometry.
+//      Double queries go through libfcl's tables; float queries through the host's
+//      own instances of FCL's float tables, which the plugin can only reach if the
+//      host exports them (the same objects are linked with ENABLE_EXPORTS as
+//      consumer_dlopen_host_exports).
 // Usage: consumer_dlopen_host local|global [path/to/planner_plugin.so]
 #include <dlfcn.h>
 
@@ -47,8 +51,12 @@ int main(int argc, char** argv) {
     }
     const int plugin_failures =
         run_checks(("plugin code, plugin loaded with " + mode).c_str(), &baseline);
+    // Same objects, two links: only consumer_dlopen_host_exports (-rdynamic)
+    // shares its float tables with the plugin.
+    const bool host_float_tables_shared = std::strstr(argv[0], "_exports") != nullptr;
     const int host_failures = consumer::runAllChecks(
-        "host code on plugin disks, plugin loaded with " + mode, *get_api(), baseline);
+        "host code on plugin disks, plugin loaded with " + mode, *get_api(), baseline,
+        host_float_tables_shared);
     failures += plugin_failures + host_failures;
     std::printf("consumer_dlopen_host (%s): %s (queries by plugin code: %d failure(s), by "
                 "host code: %d failure(s))\n",
