@@ -16,6 +16,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <typeinfo>
 #include <vector>
 
 #include <fcl/geometry/shape/sphere.h>
@@ -44,11 +45,13 @@ thread_local std::uint64_t t_disk_answers = 0;
 // 1. Disk-disk entries.
 
 /// The Disk behind a geometry that reached a GEOM_CYLINDER slot, or nullptr for a
-/// real cylinder. lz != 0 rejects real cylinders before paying for RTTI.
+/// real cylinder. lz != 0 rejects real cylinders before RTTI; Disk is final, so
+/// an exact typeid comparison suffices (a few ns, against ~6 ns per dynamic_cast).
 template <typename S>
 const Disk<S>* asDisk(const CollisionGeometry<S>* geometry) {
   if (static_cast<const fcl::Cylinder<S>*>(geometry)->lz != S(0)) return nullptr;
-  return dynamic_cast<const Disk<S>*>(geometry);
+  if (typeid(*geometry) != typeid(Disk<S>)) return nullptr;
+  return static_cast<const Disk<S>*>(geometry);
 }
 
 template <typename S>
@@ -330,7 +333,6 @@ void installIntoLibfclPrivateTables() {
 // registration.
 thread_local bool t_installing = false;
 
-template <typename S>
 void probeOnePath(const char* path, bool reached) {
   if (!reached) {
     throw std::runtime_error(hookFailureAdvice(std::string("the probe query through ") + path +
@@ -352,14 +354,14 @@ void probeScalar(const char* scalar_name) {
     distance_request.gjk_solver_type = solver;
     fcl::DistanceResult<S> distance_result;
     fcl::distance(&a, &b, distance_request, distance_result);
-    probeOnePath<S>(("fcl::distance (" + name + ")").c_str(), t_disk_answers == before + 1);
+    probeOnePath(("fcl::distance (" + name + ")").c_str(), t_disk_answers == before + 1);
 
     before = t_disk_answers;
     fcl::CollisionRequest<S> collision_request;
     collision_request.gjk_solver_type = solver;
     fcl::CollisionResult<S> collision_result;
     fcl::collide(&a, &b, collision_request, collision_result);
-    probeOnePath<S>(("fcl::collide (" + name + ")").c_str(), t_disk_answers == before + 1);
+    probeOnePath(("fcl::collide (" + name + ")").c_str(), t_disk_answers == before + 1);
   }
 }
 
