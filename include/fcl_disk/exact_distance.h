@@ -44,7 +44,7 @@ namespace fcl_disk {
 /// - Rim-rim: the optimal pair is unique (a convex set of optimal points on a
 ///   circle is one point). Newton starts at the point of disk 1 nearest c2 and
 ///   stops at a certified gap of 1e-14 * scale, at the rounding floor (flat,
-///   near-degenerate optima, e.g. next to a face case), or after 64 iterations;
+///   near-degenerate optima, e.g. next to a face case), or after 16 iterations;
 ///   the best pair found is returned and lower_bound says how well it is proven.
 /// @pre r1, r2 > 0 and finite; X_Wi has an orthonormal rotation. Non-finite
 ///      input yields a NaN distance.
