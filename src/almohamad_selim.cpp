@@ -34,7 +34,7 @@ struct NearestPointOnDisk {
 /// a radius D <= 0, which is outside the precondition. NaN fails both `>` tests,
 /// takes Case 2 and propagates.
 NearestPointOnDisk proposition1(double D, const Vec3& W) {
-  const double W_xy = std::hypot(W.x(), W.y());  // ||W||_xy
+  const double W_xy = std::sqrt(W.x() * W.x() + W.y() * W.y());  // ||W||_xy
   NearestPointOnDisk result;
   if (W_xy > D && W_xy > 0.0) {  // Case 1: W projects outside the disk.
     const double scale = D / W_xy;
@@ -151,8 +151,7 @@ DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>&
   // length of a real pair of points: an upper bound on the true distance.
   const Vec3 returned_offset =
       result.p_W2.template cast<double>() - result.p_W1.template cast<double>();
-  const double distance =  // 3-argument hypot: no underflow or overflow
-      std::hypot(returned_offset.x(), returned_offset.y(), returned_offset.z());
+  const double distance = returned_offset.norm();
   result.distance = static_cast<S>(distance);
 
   // The certificate's direction w is taken from the double pair before rounding
@@ -160,7 +159,7 @@ DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>&
   // a direction perturbed by float rounding of the points would cost first-order
   // accuracy. At distance 0 the bound 0 is attained and w is undefined.
   const Vec3 w = p_W2 - p_W1;  // the certificate's direction, unnormalised
-  const double w_norm = std::hypot(w.x(), w.y(), w.z());
+  const double w_norm = w.norm();
   result.lower_bound =
       (distance == 0.0 || w_norm == 0.0)
           ? S(0)
