@@ -147,7 +147,9 @@ TYPED_TEST(ExactCases, MatchClosedFormsUnderRigidMotions) {
         EXPECT_EQ(result.feature, c.expected_feature);
       }
       const bool intersecting = fcl_disk::intersectDisks(S(c.r1), X1s, S(c.r2), X2s);
-      if (c.expected_distance > tolerance) EXPECT_FALSE(intersecting);
+      if (c.expected_distance > tolerance) {
+        EXPECT_FALSE(intersecting);
+      }
       if (c.expected_distance == 0.0 && std::string(motion_name) == "identity") {
         EXPECT_TRUE(intersecting);
       }
