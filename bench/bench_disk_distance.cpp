@@ -15,8 +15,8 @@
 //                                         request (distance_tolerance 1e-6);
 //   fcl_distance/sphere_sphere/double     FCL's own closed-form sphere-sphere
 //                                         entry: about what FCL's dispatch costs;
-//   overhead/dynamic_cast_x2, typeid_x2   the hook's "is it a Disk?" test on both
-//                                         geometries, as done and as it could be.
+//   overhead/typeid_x2                    the hook's "is it a Disk?" test on both
+//                                         geometries (lz == 0, then typeid).
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_distance --benchmark_repetitions=10
 //     --benchmark_display_aggregates_only=true
@@ -186,25 +186,9 @@ void fclDistanceSphereSphere(benchmark::State& state) {
 }
 
 // ---- pieces of the hook's overhead ------------------------------------------
-// The hook's wrapper tells a Disk from a real Cylinder by lz == 0 and then
-// dynamic_cast<const Disk<S>*> on both geometries; these time that test alone,
-// and the cheaper exact-type test that Disk being `final` would allow.
-
-template <typename S>
-void overheadDynamicCast(benchmark::State& state) {
-  const auto& p = pool<S>();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const std::size_t k = i++ & (kPoolSize - 1);
-    const fcl::CollisionGeometry<S>* g1 = p.disk1[k]->collisionGeometry().get();
-    const fcl::CollisionGeometry<S>* g2 = p.disk2[k]->collisionGeometry().get();
-    benchmark::DoNotOptimize(g1);
-    benchmark::DoNotOptimize(g2);
-    benchmark::DoNotOptimize(dynamic_cast<const fcl_disk::Disk<S>*>(g1));
-    benchmark::DoNotOptimize(dynamic_cast<const fcl_disk::Disk<S>*>(g2));
-  }
-  finish(state);
-}
+// The hook's wrapper tells a Disk from a real Cylinder by lz == 0 and then an
+// exact typeid comparison on both geometries (Disk is final); this times that
+// test alone.
 
 template <typename S>
 void overheadTypeid(benchmark::State& state) {
@@ -256,7 +240,6 @@ int main(int argc, char** argv) {
   }
   benchmark::RegisterBenchmark("fcl_distance/sphere_sphere/double",
                                fclDistanceSphereSphere<double>);
-  benchmark::RegisterBenchmark("overhead/dynamic_cast_x2/double", overheadDynamicCast<double>);
   benchmark::RegisterBenchmark("overhead/typeid_x2/double", overheadTypeid<double>);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
