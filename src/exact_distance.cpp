@@ -3,6 +3,7 @@
 #include "fcl_disk/exact_distance.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -51,6 +52,16 @@ constexpr int kMaxRimHalvings = 8;
 /// The certificate is evaluated once a rim Newton step is below this many
 /// scene sizes (then the gap is at most about its square), or off the rim.
 constexpr double kCertifyStep = 1e-6;
+
+/// The global rim search (rimSearch) runs when Newton ends with a certified gap
+/// above kFallbackGap * scale (well above the certificate's own rounding, so
+/// only genuinely unconverged pairs pay for it): kRimSamples samples, the
+/// kRimCandidates lowest local minima refined, each by at most
+/// kMaxRimSearchIterations safeguarded Newton steps.
+constexpr double kFallbackGap = 1e-12;
+constexpr int kRimSamples = 256;
+constexpr int kRimCandidates = 4;
+constexpr int kMaxRimSearchIterations = 60;
 
 /// Iterations are capped: median 3-4 on rim-rim pairs; the ~1% that reach the
 /// cap are flat, near-degenerate optima whose distance is already at its
@@ -361,6 +372,58 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   return finish(kMaxNewtonIterations);  // the certificate says how well it is proven
 }
 
+/// Fallback for the rare rim-rim pairs the Newton iteration leaves uncertified
+/// (nearly parallel disks whose psi is flat to rounding over a long valley):
+/// since p* lies on disk 1's rim, minimise psi along the rim globally. Sample
+/// kRimSamples angles, then refine the lowest sampled local minima by
+/// safeguarded Newton on psi'(theta) = r1 g.t inside the bracket of their
+/// neighbouring samples (psi restricted to the rim may have several local
+/// minima; the certificate tells which refinement found the optimum).
+Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
+  const double r1 = pair.r1;
+  constexpr double kTwoPi = 6.283185307179586;
+  auto point = [&](double theta) { return Vec2(r1 * std::cos(theta), r1 * std::sin(theta)); };
+  std::array<double, kRimSamples> psi{};
+  for (int k = 0; k < kRimSamples; ++k) psi[k] = evaluate(pair, point(kTwoPi * k / kRimSamples)).psi;
+  // Local minima of the samples, lowest first.
+  std::array<int, kRimSamples> minima{};
+  int count = 0;
+  for (int k = 0; k < kRimSamples; ++k) {
+    const double before = psi[(k + kRimSamples - 1) % kRimSamples];
+    const double after = psi[(k + 1) % kRimSamples];
+    if (psi[k] <= before && psi[k] <= after) minima[count++] = k;
+  }
+  std::sort(minima.begin(), minima.begin() + count, [&](int a, int b) { return psi[a] < psi[b]; });
+  Solution best{Vec3::Zero(), Vec3::Zero(), std::numeric_limits<double>::infinity(),
+                DiskPairFeature::rim_rim};
+  for (int m = 0; m < std::min(count, kRimCandidates); ++m) {
+    const double step = kTwoPi / kRimSamples;
+    double lo = kTwoPi * minima[m] / kRimSamples - step, hi = lo + 2 * step;
+    double theta = lo + step;
+    PointToDisk2 at = evaluate(pair, point(theta));
+    for (int iteration = 0; iteration < kMaxRimSearchIterations; ++iteration) {
+      const Vec2 radial(std::cos(theta), std::sin(theta));
+      const Vec2 tangent(-radial.y(), radial.x());
+      const double slope = r1 * at.gradient.dot(tangent);
+      // psi'' along the rim: r1^2 t'Ht - r1 g.e (exact, any sign).
+      const double curvature = r1 * r1 * tangent.dot(at.hessian * tangent) - r1 * at.gradient.dot(radial);
+      if (slope > 0.0) hi = theta; else lo = theta;
+      double next = curvature > 0.0 ? theta - slope / curvature : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      if (std::abs(next - theta) <= kLineSearchResolution * kTwoPi) break;
+      theta = next;
+      at = evaluate(pair, point(theta));
+    }
+    const Vec3 x(point(theta).x(), point(theta).y(), 0.0);
+    const double distance = std::sqrt(2.0 * at.psi);
+    if (distance < best.distance) {
+      best = {x, at.q, distance, DiskPairFeature::rim_rim, 0,
+              std::max(face_lower_bound, separationLowerBound(pair, at.q - x))};
+    }
+  }
+  return best;
+}
+
 Solution solveInFrame1(const PairInFrame1& pair) {
   const double scale = std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
   if (!std::isfinite(scale) || !pair.R.allFinite()) {
@@ -382,7 +445,17 @@ Solution solveInFrame1(const PairInFrame1& pair) {
     const Vec3 q = pair.c + pair.R * face2->p;
     return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
   }
-  return rimRim(pair, scale, face_lower_bound);
+  Solution newton = rimRim(pair, scale, face_lower_bound);
+  if (newton.distance - newton.lower_bound > kFallbackGap * scale) {
+    const Solution searched = rimSearch(pair, face_lower_bound);
+    if (searched.distance < newton.distance) {
+      Solution better = searched;
+      better.iterations = newton.iterations;
+      better.lower_bound = std::max(better.lower_bound, newton.lower_bound);
+      return better;
+    }
+  }
+  return newton;
 }
 
 }  // namespace
