@@ -57,11 +57,12 @@ constexpr double kCertifyStep = 1e-6;
 /// above kFallbackGap * scale (well above the certificate's own rounding, so
 /// only genuinely unconverged pairs pay for it): kRimSamples samples, the
 /// kRimCandidates lowest local minima refined, each by at most
-/// kMaxRimSearchIterations safeguarded Newton steps.
+/// kMaxRimSearchIterations golden-section steps (enough to shrink a bracket of
+/// two samples to the resolution of theta).
 constexpr double kFallbackGap = 1e-12;
 constexpr int kRimSamples = 256;
 constexpr int kRimCandidates = 4;
-constexpr int kMaxRimSearchIterations = 60;
+constexpr int kMaxRimSearchIterations = 80;
 
 /// Iterations are capped: median 3-4 on rim-rim pairs; the ~1% that reach the
 /// cap are flat, near-degenerate optima whose distance is already at its
@@ -376,9 +377,9 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
 /// (nearly parallel disks whose psi is flat to rounding over a long valley):
 /// since p* lies on disk 1's rim, minimise psi along the rim globally. Sample
 /// kRimSamples angles, then refine the lowest sampled local minima by
-/// safeguarded Newton on psi'(theta) = r1 g.t inside the bracket of their
-/// neighbouring samples (psi restricted to the rim may have several local
-/// minima; the certificate tells which refinement found the optimum).
+/// golden-section search inside the bracket of their neighbouring samples (psi
+/// restricted to the rim may have several local minima; the lowest refined one
+/// is kept).
 Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
   const double r1 = pair.r1;
   constexpr double kTwoPi = 6.283185307179586;
@@ -397,23 +398,30 @@ Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
   Solution best{Vec3::Zero(), Vec3::Zero(), std::numeric_limits<double>::infinity(),
                 DiskPairFeature::rim_rim};
   for (int m = 0; m < std::min(count, kRimCandidates); ++m) {
+    // Golden-section search on psi's values: near the optimum of nearly
+    // parallel disks psi's gradient is below its rounding while its values are
+    // still resolved, so a value-based bracket search is the robust choice.
+    constexpr double kInvPhi = 0.6180339887498949;
     const double step = kTwoPi / kRimSamples;
     double lo = kTwoPi * minima[m] / kRimSamples - step, hi = lo + 2 * step;
-    double theta = lo + step;
-    PointToDisk2 at = evaluate(pair, point(theta));
-    for (int iteration = 0; iteration < kMaxRimSearchIterations; ++iteration) {
-      const Vec2 radial(std::cos(theta), std::sin(theta));
-      const Vec2 tangent(-radial.y(), radial.x());
-      const double slope = r1 * at.gradient.dot(tangent);
-      // psi'' along the rim: r1^2 t'Ht - r1 g.e (exact, any sign).
-      const double curvature = r1 * r1 * tangent.dot(at.hessian * tangent) - r1 * at.gradient.dot(radial);
-      if (slope > 0.0) hi = theta; else lo = theta;
-      double next = curvature > 0.0 ? theta - slope / curvature : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      if (std::abs(next - theta) <= kLineSearchResolution * kTwoPi) break;
-      theta = next;
-      at = evaluate(pair, point(theta));
+    double a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
+    PointToDisk2 at_a = evaluate(pair, point(a)), at_b = evaluate(pair, point(b));
+    for (int iteration = 0; iteration < kMaxRimSearchIterations &&
+                            hi - lo > kLineSearchResolution * kTwoPi;
+         ++iteration) {
+      if (at_a.psi <= at_b.psi) {
+        hi = b, b = a, at_b = at_a;
+        a = hi - kInvPhi * (hi - lo);
+        at_a = evaluate(pair, point(a));
+      } else {
+        lo = a, a = b, at_a = at_b;
+        b = lo + kInvPhi * (hi - lo);
+        at_b = evaluate(pair, point(b));
+      }
     }
+    const bool a_wins = at_a.psi <= at_b.psi;
+    const double theta = a_wins ? a : b;
+    const PointToDisk2& at = a_wins ? at_a : at_b;
     const Vec3 x(point(theta).x(), point(theta).y(), 0.0);
     const double distance = std::sqrt(2.0 * at.psi);
     if (distance < best.distance) {

@@ -17,15 +17,21 @@ namespace fcl_disk {
 /// Method (docs/exact_distance.md): (1) a closed-form intersection test; (2) the
 /// two closed-form face cases, accepted only when their optimality (KKT)
 /// conditions hold; (3) otherwise the rim-rim case: Newton's method on the
-/// convex psi(p) = dist(p, K2)^2 / 2 over disk 1, each step minimising psi's
-/// quadratic model over the disk exactly, with backtracking; it is stopped by
-/// the duality gap between |p - q| and the certificate
-/// g(w) = w.(c2 - c1) - r1|P1 w| - r2|P2 w| (a lower bound for every unit w).
+/// convex psi(p) = dist(p, K2)^2 / 2 over disk 1 (Newton along the rim, or a
+/// step minimising psi's quadratic model over the disk with an exact line
+/// search), stopped by the duality gap between |p - q| and the certificate
+/// g(w) = w.(c2 - c1) - r1|P1 w| - r2|P2 w| (a lower bound for every unit w);
+/// if the gap stays open, a global search along disk 1's rim as fallback.
 ///
 /// Guarantee (double): |distance - d_true| <= 1e-12 * max(1, r1 + r2 + |c1 - c2|)
 /// and both points lie on their disks to the same bound plus the rounding of
 /// storing them in world coordinates (ulp(|c_i|)); distance == |p_W2 - p_W1| up
-/// to that rounding. lower_bound is the duality certificate at the returned w.
+/// to that rounding. lower_bound is the duality certificate (at the returned
+/// separation direction and at the face normals): certifiedGap() is at most
+/// 1e-14 * scale on well-conditioned pairs. The certificate's direction is
+/// known only to about eps * scale / d, so for nearly parallel disks almost
+/// touching (d far below scale) the gap can exceed the actual error, up to about
+/// 8 eps (r1 + r2) scale / d: it is then an honest but pessimistic error bar.
 /// Float: inputs are promoted to double, results rounded to float, so the bound
 /// is a few float ulps of max(1, r1 + r2 + |c1 - c2|, |c_i|).
 ///
