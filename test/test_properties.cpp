@@ -26,7 +26,6 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
-#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -52,8 +51,10 @@ using Vector3d = Eigen::Vector3d;
 using Matrix3d = Eigen::Matrix3d;
 using Pose3d = fcl::Transform3<double>;
 
-constexpr long kReleasePoses = 100000;  // per scalar type and test, Release build
-constexpr long kDebugPoses = 3000;      // unoptimised Eigen is ~30x slower
+// Poses per scalar type (each test checks the same ones). Release: ~1 s per
+// test and type on one core. Debug (no NDEBUG): unoptimised Eigen is far slower.
+constexpr long kReleasePoses = 100000;
+constexpr long kDebugPoses = 3000;
 constexpr const char* kPoseCountVariable = "FCL_DISK_PROPERTY_POSES";
 constexpr std::uint64_t kPoseSeed = 0x5eed'd15c'2024ULL;
 
@@ -345,15 +346,18 @@ class Property {
   template <typename Details>
   void expectAtMost(double error, double tolerance, Details&& details) {
     ++checked_;
-    const double ratio = error <= tolerance ? (tolerance > 0 ? error / tolerance : 0.0)
-                                            : std::numeric_limits<double>::infinity();
-    const double shown_ratio =
-        std::isfinite(error) && tolerance > 0 ? error / tolerance : std::numeric_limits<double>::infinity();
-    if (ratio <= 1.0) {
-      worst_ratio_ = std::max(worst_ratio_, ratio);
+    const bool holds = error <= tolerance;  // false for NaN
+    const double ratio = tolerance > 0 ? error / tolerance : (holds ? 0.0 : kInfinity);
+    if (holds) {
+      if (ratio > worst_ratio_) {
+        worst_ratio_ = ratio;
+        // Kept for the summary: a pass close to the limit deserves a look.
+        worst_pass_ = ratio > kCloseToLimit ? details() : std::string();
+      }
       return;
     }
     ++violated_;
+    const double shown_ratio = std::isnan(ratio) ? kInfinity : ratio;
     if (violated_ == 1 || shown_ratio > worst_violation_ratio_) {
       worst_violation_ratio_ = shown_ratio;
       std::ostringstream out;
@@ -374,6 +378,8 @@ class Property {
     if (violated_ == 0 && checked_ > 0)
       std::cout << ", worst error/tolerance " << std::setprecision(3) << worst_ratio_;
     std::cout << "\n";
+    if (violated_ == 0 && !worst_pass_.empty())
+      std::cout << "    (closest pass: " << worst_pass_ << ")\n";
     EXPECT_EQ(violated_, 0) << "Property \"" << name_ << "\" failed on " << violated_ << " of "
                             << checked_ << " poses. Worst: " << worst_violation_;
   }
@@ -385,6 +391,9 @@ class Property {
   double worst_ratio_{0};
   double worst_violation_ratio_{0};
   std::string worst_violation_;
+  std::string worst_pass_;
+  static constexpr double kInfinity = std::numeric_limits<double>::infinity();
+  static constexpr double kCloseToLimit = 0.5;  // of the tolerance
 };
 
 template <typename S>
@@ -452,21 +461,38 @@ TYPED_TEST(DiskSolverProperties, ExactSolverIsConsistentSymmetricInvariantAndCer
                                  resultText);
     bound_below.expectAtMost(double(result.lower_bound) - d, E::kExactDistanceRelative * scale,
                              resultText);
-    certified.expectAtMost(double(result.certifiedGap()), E::kCertifiedGapRelative * scale,
-                           resultText);
-    if (d > 0 && (q - p).norm() > 0) {
+    const double conditioning_term =
+        d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum * scale +
+                             E::kCertificateSmallDistance * scale * scale / d)
+              : 0.0;
+    certified.expectAtMost(double(result.certifiedGap()),
+                           E::kCertifiedGapRelative * scale + conditioning_term, resultText);
+    // The bound at the returned direction w is a statement about the points being
+    // the optimal pair: checked where that pair is unique and well conditioned
+    // (near a face case the optimum is flat along the rim and w is only known to
+    // about sqrt(eps)).
+    const double sine = normalsSine(pair);
+    const bool unique_pair = sine >= E::kMinSineForUniquePoints;
+    if (d > 0 && (q - p).norm() > 0 && unique_pair) {
       const Vector3d w = (q - p).normalized();
       const double gap = d - dualLowerBound<double>(w, r1, X_W1, r2, X_W2);
-      // The returned points carry rounding e = kOnDisk * scale each, which tilts
-      // w by up to 2 * 2e/d, and the bound is Lipschitz in w with constant
-      // |c2 - c1| + r1 + r2: the bound at the returned w may fall short of d by
-      // that much even for an exactly optimal pair.
+      // What a correct answer can lose here: (1) the pair optimal for any problem
+      // within eta (Hausdorff) of ours gives a bound >= d - 2 eta on ours (support
+      // functions move by <= eta); eta covers a float rotation being orthonormal
+      // only to rounding (kPoseRounding). (2) Rounding each returned point by
+      // e = kOnDisk * scale tilts w by up to 2 * 2e/d, and the bound is Lipschitz
+      // on unit vectors with constant |c2 - c1| + r1 + r2.
       const double lipschitz = (X_W2.translation() - X_W1.translation()).norm() + r1 + r2;
       const double direction_error = 2 * 2 * E::kOnDiskRelative * scale / d;
       certificate_at_w.expectAtMost(
-          gap, E::kCertifiedGapRelative * scale + lipschitz * direction_error,
+          gap,
+          (E::kCertifiedGapRelative + 2 * E::kPoseRoundingRelative) * scale +
+              lipschitz * direction_error,
           [&] { return "bound at w " + numberText(d - gap) + "; " + resultText(); });
 
+    }
+    if (d > 0 && (q - p).norm() > 0) {
+      const Vector3d w = (q - p).normalized();
       // Optimality along w: moving disk 2 by s towards disk 1 along w leaves a
       // real pair at distance d - s, and no pair can be closer than d - s (the
       // distance is 1-Lipschitz in translations). An answer d that is too large
@@ -504,8 +530,7 @@ TYPED_TEST(DiskSolverProperties, ExactSolverIsConsistentSymmetricInvariantAndCer
         });
 
     // Points: only where the nearest pair is unique and well conditioned.
-    const double sine = normalsSine(pair);
-    if (sine >= E::kMinSineForUniquePoints) {
+    if (unique_pair) {
       ++unique_pairs;
       const double conditioning = 1.0 / sine;
       const Vector3d p_swapped = swapped.p_W2.template cast<double>();
@@ -576,7 +601,7 @@ TYPED_TEST(DiskSolverProperties, IntersectionAgreesWithExactSolverAndItsContactS
   Property unit_normal("contact: |normal| == 1");
   Property valid_depth("contact: penetration_depth >= 0 and finite");
   Property separates("contact: moving disk 2 by (depth + step) normal separates");
-  Property touching("contact: ... and leaves them at distance <= step (touching at depth)");
+  Property touching("contact: ... and leaves them at distance <= depth + step");
 
   long intersecting = 0, excused = 0;
   forEachPose<S>("intersection properties", [&](const PosedPair<S>& pair) {
@@ -619,9 +644,11 @@ TYPED_TEST(DiskSolverProperties, IntersectionAgreesWithExactSolverAndItsContactS
     valid_depth.expectTrue(depth >= 0 && std::isfinite(depth), contactText);
     if (!(std::isfinite(depth) && normal.norm() > 0)) return;
 
-    // FCL convention (disk_intersection.h): translating disk 2 by depth * normal
-    // separates the disks, which then touch. One step further they are apart,
-    // and no further apart than the step (distance is 1-Lipschitz in translations).
+    // Convention (disk_intersection.h): translating disk 2 by depth * normal
+    // takes it off the other disk's plane, which separates the disks (an upper
+    // bound on the penetration depth, not a touching translation). One step
+    // further they are apart, and no further apart than the translation itself
+    // (they shared a point, and the distance is 1-Lipschitz in translations).
     const double step = E::kSeparationStepRelative * scale;
     fcl::Transform3<S> separated_X_W2 = pair.X_W2;
     separated_X_W2.translation() =
@@ -631,7 +658,7 @@ TYPED_TEST(DiskSolverProperties, IntersectionAgreesWithExactSolverAndItsContactS
     const auto after = exactDiskDistance<S>(pair.r1, pair.X_W1, pair.r2, separated_X_W2);
     touching.expectAtMost(
         double(after.distance),
-        step + (E::kExactDistanceRelative + E::kPoseRoundingRelative) * std::max(scale, depth), [&] {
+        depth + step + (E::kExactDistanceRelative + E::kPoseRoundingRelative) * std::max(scale, depth), [&] {
           return "distance after moving " + numberText(after.distance) + ", step " +
                  numberText(step) + "; " + contactText();
         });

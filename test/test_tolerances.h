@@ -32,15 +32,17 @@ struct Eps {
 
   // ---------------------------------------------------------------- exact solver
   /// |distance - d_true| and | |p - q| - distance |, relative. double: the
-  /// guarantee stated in exact_distance.h (1e-12 * scale). float: the solver runs
-  /// in double and rounds p, q, distance to float; 16 ulps of scale covers those
-  /// three roundings plus the non-orthonormality of a float rotation (~eps).
-  static constexpr double kExactDistanceRelative = kIsFloat ? 16 * kUnitRoundoff : 1e-12;
+  /// guarantee stated in exact_distance.h (1e-12 * scale). float: "a few float
+  /// ulps" there (the solver runs in double and rounds p, q, distance to float):
+  /// 1/2 ulp per rounded coordinate, ~1 ulp for a float rotation being
+  /// orthonormal only to rounding; 8 ulps of scale (measured: about 1).
+  static constexpr double kExactDistanceRelative = kIsFloat ? 8 * kUnitRoundoff : 1e-12;
 
-  /// A returned point's offset from its disk (|local z|, in-plane radius - r),
-  /// relative. Same budget as the distance: exact_distance.h states the points
-  /// lie on their disks to the distance bound plus ulp(|c_i|) (in sceneSize()).
-  static constexpr double kOnDiskRelative = kIsFloat ? 16 * kUnitRoundoff : 1e-12;
+  /// A returned point's offset from its disk (|local z|, in-plane radius - r), and
+  /// the rounding error of a returned point, relative. Same budget as the
+  /// distance: exact_distance.h states the points lie on their disks to the
+  /// distance bound plus ulp(|c_i|) (sceneSize() includes |c_i|).
+  static constexpr double kOnDiskRelative = kIsFloat ? 8 * kUnitRoundoff : 1e-12;
 
   /// Storing a rigidly moved pose in S perturbs centres by ~ulp(|c|) and rotation
   /// entries by ~eps/2; the distance is 1-Lipschitz in such moves, so a few ulps
@@ -50,15 +52,27 @@ struct Eps {
   /// Points of two solves of the same (swapped or moved) problem, relative, per
   /// unit of conditioning (see kMinSineForUniquePoints). Derived from the
   /// distance guarantee, not measured: near a unique optimum the distance grows
-  /// quadratically along the rims (curvature ~1/r), so a pair whose distance is
-  /// within eps * scale of optimal may sit up to sqrt(2 eps) * scale from it.
-  /// double: sqrt(2e-12) = 1.4e-6; float: sqrt(32 * 1.2e-7) = 2.0e-3. A frame,
-  /// ordering or tie-break bug moves points by O(r) and is still caught.
-  static inline const double kUniquePointsRelative = std::sqrt(2 * kExactDistanceRelative);
+  /// only quadratically along the rims (curvature ~1/r; likewise the chord
+  /// midpoint of barely crossing disks moves like sqrt(overlap)), so a pair whose
+  /// distance is within eps * scale of optimal may sit sqrt(2 eps) * scale from
+  /// it, and two such solves sqrt(8 eps) * scale apart. double: sqrt(8e-12) =
+  /// 2.8e-6; float: sqrt(64 * 1.2e-7) = 2.8e-3 (near-touching float poses, whose
+  /// rounding makes barely crossing chords, use ~60% of it). A frame, ordering or
+  /// tie-break bug moves points by O(r).
+  static inline const double kUniquePointsRelative = std::sqrt(8 * kExactDistanceRelative);
 
-  /// Certificate: certifiedGap() = distance - lower_bound, relative. exact_distance.h
-  /// says it "is 0 up to rounding" for the exact solver: the distance budget.
+  /// Certificate: certifiedGap() = distance - lower_bound, relative: the distance
+  /// budget on well-conditioned pairs. exact_distance.h adds a conditioning term
+  /// (kCertificateConditioning) for nearly parallel, nearly touching disks.
   static constexpr double kCertifiedGapRelative = kExactDistanceRelative;
+
+  /// exact_distance.h: for near-degenerate pairs the certified gap may reach
+  /// (r1 + r2) (sqrt(eps) scale + 8 eps scale^2 / d), eps of the scalar type:
+  /// the certificate's direction is known only to ~eps scale / d (tiny d) or
+  /// ~sqrt(eps) (flat optima beside a face case), and the bound is Lipschitz
+  /// with constant r1 + r2 at its kinks. These are the two coefficients.
+  static inline const double kCertificateFlatOptimum = std::sqrt(kUnitRoundoff);
+  static constexpr double kCertificateSmallDistance = 8 * kUnitRoundoff;
 
   // -------------------------------------------------------------- intersection
   /// intersectDisks() and the exact solver's "distance == 0" may disagree only
@@ -122,6 +136,14 @@ struct Eps {
   /// simplex), 2e-7 elsewhere; 4e-4 is 4x the worst. Still 1000x below the
   /// errors the bracket exists to catch (facts.md: up to 10% of the scene).
   static constexpr double kGjkIndepRelative = kIsFloat ? 4e-4 : 2e-6;
+
+  /// The upper half of the bracket, d_disk <= d_cyl + h, needs no GJK convergence:
+  /// GJK returns the distance of a simplex spanned by support points, which lies
+  /// inside the Minkowski difference, so it can only OVERestimate d_cyl. What is
+  /// left is rounding (relative; measured 3 ulps in double, 1.5 float ulps in
+  /// float on the 5000 pairs; 64 and 8 ulps here) plus, absolutely,
+  /// kGjkRequestTolerance, below which GJK may declare overlap (reported as 0).
+  static constexpr double kGjkRoundingRelative = (kIsFloat ? 8 : 64) * kUnitRoundoff;
 
   /// Below this |n1 x n2| (and the same for the centre offset against n1), a pair
   /// is an exactly coaxial stack, on which libccd's GJK (FCL 0.7, libccd 2.1)

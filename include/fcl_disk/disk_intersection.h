@@ -8,7 +8,8 @@ namespace fcl_disk {
 /// Contact between two intersecting disks, in the world frame, following FCL's
 /// convention for fcl::Contact: `normal` points from disk 1 towards disk 2 and
 /// translating disk 2 by penetration_depth * normal (or disk 1 by the opposite)
-/// separates them (they then touch).
+/// separates them: it takes one disk off the other's plane, after which they
+/// touch only if the contact is over the other disk's face.
 ///
 /// Zero-thickness disks have no interior, so the depth is a separating
 /// translation, not an overlap of volumes: the shorter of (a) moving disk 2

@@ -28,10 +28,12 @@ namespace fcl_disk {
 /// storing them in world coordinates (ulp(|c_i|)); distance == |p_W2 - p_W1| up
 /// to that rounding. lower_bound is the duality certificate (at the returned
 /// separation direction and at the face normals): certifiedGap() is at most
-/// 1e-14 * scale on well-conditioned pairs. The certificate's direction is
-/// known only to about eps * scale / d, so for nearly parallel disks almost
-/// touching (d far below scale) the gap can exceed the actual error, up to about
-/// 8 eps (r1 + r2) scale / d: it is then an honest but pessimistic error bar.
+/// 1e-14 * scale on well-conditioned pairs. For near-degenerate pairs the
+/// certificate is an honest but pessimistic error bar: its direction is known
+/// only to about eps * scale / d (tiny d) or sqrt(eps) (flat optima next to a
+/// face case of nearly parallel disks), and g is only Lipschitz at its kinks, so
+/// the gap may reach about (r1 + r2) (sqrt(eps) scale + 8 eps scale^2 / d) while
+/// the distance still meets the bound above (eps of the scalar type).
 /// Float: inputs are promoted to double, results rounded to float, so the bound
 /// is a few float ulps of max(1, r1 + r2 + |c1 - c2|, |c_i|).
 ///
