@@ -43,6 +43,7 @@
 #include <string>
 #include <vector>
 
+#include "test_random.h"
 #include "test_tolerances.h"
 
 namespace {
@@ -123,31 +124,7 @@ struct Pair {
   }
 };
 
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  double uniform01() { return double(engine_() >> 11) * 0x1.0p-53; }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
-  double normal() {  // Box-Muller: std distributions differ between libraries
-    const double u1 = 1.0 - uniform01();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * uniform01());
-  }
-  Vector3d unitVector() {
-    for (;;) {
-      const Vector3d v(normal(), normal(), normal());
-      if (v.norm() > 1e-6) return v.normalized();
-    }
-  }
-  Vector3d inBall(double radius) { return radius * std::cbrt(uniform01()) * unitVector(); }
-  Matrix3d rotation() {  // uniform: normalised Gaussian quaternion
-    Eigen::Quaterniond q(normal(), normal(), normal(), normal());
-    q.normalize();
-    return q.toRotationMatrix();
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
+using fcl_disk_test::Random;
 
 Pose3d makePose(const Matrix3d& R, const Vector3d& c) {
   Pose3d X = Pose3d::Identity();

@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "test_random.h"
 #include "test_tolerances.h"
 
 namespace {
@@ -76,37 +77,7 @@ long poseCount() {
 
 /// Portable random numbers: mt19937_64's sequence is fixed by the standard, the
 /// std distributions are not, so the transforms are our own.
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-
-  double uniform01() { return double(engine_() >> 11) * 0x1.0p-53; }
-  double uniform(double lo, double hi) { return lo + (hi - lo) * uniform01(); }
-  double logUniform(double lo, double hi) {
-    return std::exp(uniform(std::log(lo), std::log(hi)));
-  }
-  bool chance(double probability) { return uniform01() < probability; }
-  double normal() {  // Box-Muller
-    const double u1 = 1.0 - uniform01();
-    return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * M_PI * uniform01());
-  }
-  Vector3d unitVector() {
-    for (;;) {
-      const Vector3d v(normal(), normal(), normal());
-      if (v.norm() > 1e-6) return v.normalized();
-    }
-  }
-  Vector3d inBall(double radius) { return radius * std::cbrt(uniform01()) * unitVector(); }
-  /// Uniformly distributed rotation: a normalised Gaussian quaternion.
-  Matrix3d rotation() {
-    Eigen::Quaterniond q(normal(), normal(), normal(), normal());
-    q.normalize();
-    return q.toRotationMatrix();
-  }
-
- private:
-  std::mt19937_64 engine_;
-};
+using fcl_disk_test::Random;
 
 /// Rotation about the local z axis with exact zeros in its third row and column,
 /// so R * spinAboutNormal(a) has exactly R's third column (the same normal).
