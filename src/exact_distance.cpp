@@ -8,7 +8,6 @@
 #include <limits>
 #include <optional>
 
-
 #include "pair_in_frame1.h"
 
 namespace fcl_disk {
@@ -20,8 +19,8 @@ using internal::Vec3;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-/// Newton stops when the certified gap |q - p| - G-bound is below this many
-/// scene sizes: 45 ulps, comfortably under the 1e-12 promise and above the
+/// Newton stops when the certified gap |q - p| - g is below this many scene
+/// sizes: 45 ulps, comfortably under the 1e-12 promise and above the
 /// rounding noise (a few ulps) of evaluating both bounds.
 constexpr double kGapTolerance = 1e-14;
 
@@ -65,8 +64,8 @@ constexpr int kRimCandidates = 4;
 constexpr int kMaxRimSearchIterations = 80;
 
 /// Iterations are capped: median 3-4 on rim-rim pairs; the ~1% that reach the
-/// cap are flat, near-degenerate optima whose distance is already at its
-/// rounding floor (docs/exact_distance.md, section 4).
+/// cap are flat, near-degenerate optima, handed to the rim search when their
+/// certificate is still open (docs/exact_distance.md, section 4).
 constexpr int kMaxNewtonIterations = 16;
 
 /// Exact line search along a Newton step (regula falsi on psi'): at most
