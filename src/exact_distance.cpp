@@ -107,8 +107,7 @@ std::optional<Vec2> overlapOfProjections(const PairInFrame1& pair) {
   const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
   const auto t = internal::coplanarOverlapMidpoint(D, pair.r1, pair.r2);
   if (!t) return std::nullopt;
-  if (D == 0.0) return Vec2::Zero();
-  return Vec2(pair.c.x() / D * *t, pair.c.y() / D * *t);
+  return pair.pointOnCentreLine(*t);
 }
 
 /// Face case of disk 1: p inside disk 1's face, q the point of disk 2 nearest

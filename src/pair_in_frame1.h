@@ -50,6 +50,15 @@ struct PairInFrame1 {
   /// Maps a point of disk-2-in-plane coordinates (a, b) to frame 1.
   Vec3 pointOfDisk2(const Vec2& ab) const { return c + ab.x() * R.col(0) + ab.y() * R.col(1); }
 
+  /// The in-plane point at signed distance t from c1 towards disk 2's centre's
+  /// projection (c1 itself if the centres are coaxial): where coplanar or
+  /// parallel overlaps are reported.
+  Vec2 pointOnCentreLine(double t) const {
+    const double D = std::sqrt(c.x() * c.x() + c.y() * c.y());
+    if (D == 0.0) return Vec2::Zero();
+    return Vec2(c.x() / D * t, c.y() / D * t);
+  }
+
   /// |P1 w| and |P2 w| (lengths of w's components in the planes), from the axes.
   double inPlane1(const Vec3& w) const { return std::sqrt(w.x() * w.x() + w.y() * w.y()); }
   double inPlane2(const Vec3& w) const {
@@ -91,9 +100,8 @@ inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
     const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
     const auto t = coplanarOverlapMidpoint(D, pair.r1 + slack, pair.r2);
     if (!t) return std::nullopt;
-    const double along = std::clamp(*t, -pair.r1, pair.r1);
-    if (D == 0.0) return Vec3(0.0, 0.0, 0.5 * cz);
-    return Vec3(pair.c.x() / D * along, pair.c.y() / D * along, 0.5 * cz);
+    const Vec2 point = pair.pointOnCentreLine(std::clamp(*t, -pair.r1, pair.r1));
+    return Vec3(point.x(), point.y(), 0.5 * cz);
   }
   // Chord of disk 2 on plane 1, in disk 2's (a, b) coordinates: the line
   // m.(a, b) = -cz, foot f = -cz m / s^2 (|f| <= r2 + slack/s, clamped to the

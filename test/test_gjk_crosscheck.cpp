@@ -267,7 +267,7 @@ const std::vector<PairSpec>& allPairSpecs() {
           }
           default: {
             spec.name = "nearly parallel #" + std::to_string(i);
-            const double tilt = std::exp(random.uniform(std::log(1e-8), std::log(1e-2)));
+            const double tilt = random.logUniform(1e-8, 1e-2);
             R2 = Eigen::AngleAxisd(tilt, R1 * Vector3d(1, 0, 0)).toRotationMatrix() * R2;
             break;
           }
@@ -286,7 +286,7 @@ const std::vector<PairSpec>& allPairSpecs() {
       spec.name = "rim over face #" + std::to_string(i);
       spec.r1 = randomRadius();
       spec.r2 = randomRadius();
-      const double separation = std::exp(random.uniform(std::log(1e-7), std::log(1e-1)));
+      const double separation = random.logUniform(1e-7, 1e-1);
       Matrix3d R2 = random.rotation();
       while (std::hypot(R2(0, 2), R2(1, 2)) < 0.05) R2 = random.rotation();  // not parallel
       // Disk 2's lowest rim point is c2 - r2 u, u the unit in-plane part of +z;
@@ -308,7 +308,7 @@ const std::vector<PairSpec>& allPairSpecs() {
       spec.name = "rim-rim #" + std::to_string(i);
       spec.r1 = randomRadius();
       spec.r2 = randomRadius();
-      const double separation = std::exp(random.uniform(std::log(1e-7), std::log(1e-1)));
+      const double separation = random.logUniform(1e-7, 1e-1);
       // p on rim 1 at angle a; w = cos(psi) rho1 + sin(psi) z lies in disk 1's
       // normal cone at p (cos(psi) > 0); q = p + separation w must be the point of
       // disk 2 extreme along -w, so c2 = q - r2 P2(-w)/|P2 w|.
