@@ -3,6 +3,7 @@
 
 #include <fcl_disk/almohamad_selim.h>
 #include <fcl_disk/disk.h>
+#include <fcl_disk/disk_aabb.h>
 #include <fcl_disk/disk_intersection.h>
 #include <fcl_disk/disk_pair.h>
 #include <fcl_disk/exact_distance.h>
