@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 
+#include "pair_in_frame1.h"
+
 namespace fcl_disk {
 namespace {
 
@@ -70,20 +72,11 @@ DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>&
   const double D2 = static_cast<double>(r2);
   const fcl::Transform3<double> X_W1d = X_W1.template cast<double>();
   const fcl::Transform3<double> X_W2d = X_W2.template cast<double>();
+  // Invalid input (NaN or infinite radius or pose, a rotation that is not
+  // orthonormal): NaN out. Without this a NaN radius would fail every `>` test
+  // of Props. 1-2 and quietly yield a finite, meaningless pair.
+  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return internal::nanDistanceResult<S>();
   DiskDistanceResult<S> result;
-
-  // Non-finite input (NaN or infinite radius or pose): NaN out. Without this a
-  // NaN radius would fail every `>` test of Props. 1-2 and quietly yield a
-  // finite, meaningless pair.
-  if (!(std::isfinite(D1) && std::isfinite(D2) && X_W1d.matrix().allFinite() &&
-        X_W2d.matrix().allFinite())) {
-    const S nan = std::numeric_limits<S>::quiet_NaN();
-    result.distance = nan;
-    result.lower_bound = nan;
-    result.p_W1.setConstant(nan);
-    result.p_W2.setConstant(nan);
-    return result;
-  }
 
   const Mat3 R1 = X_W1d.linear();
   const Mat3 R2 = X_W2d.linear();

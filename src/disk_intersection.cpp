@@ -39,6 +39,7 @@ std::pair<double, Vec3> separatingTranslation(const PairInFrame1& pair) {
 template <typename S>
 bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2,
                     DiskContact<S>* contact) {
+  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return false;
   const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
   const auto common = internal::commonPoint(pair);
   if (!common) return false;

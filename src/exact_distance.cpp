@@ -431,7 +431,7 @@ Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
 }
 
 Solution solveInFrame1(const PairInFrame1& pair) {
-  const double scale = std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
+  const double scale = pair.scale();
   if (!std::isfinite(scale) || !pair.R.allFinite()) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     return {Vec3::Constant(nan), Vec3::Constant(nan), nan, DiskPairFeature::rim_rim, 0, nan};
@@ -469,6 +469,7 @@ Solution solveInFrame1(const PairInFrame1& pair) {
 template <typename S>
 DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                         const fcl::Transform3<S>& X_W2) {
+  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return internal::nanDistanceResult<S>();
   const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
   const Solution solution = solveInFrame1(pair);
 

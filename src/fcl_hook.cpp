@@ -16,7 +16,9 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <limits>
 #include <typeinfo>
+#include <utility>
 #include <vector>
 
 #include <fcl/geometry/shape/sphere.h>
@@ -54,6 +56,22 @@ const Disk<S>* asDisk(const CollisionGeometry<S>* geometry) {
   return static_cast<const Disk<S>*>(geometry);
 }
 
+/// The answer for input that describes no disk pair: NaN, never a finite
+/// made-up distance.
+template <typename S>
+S answerNoDistance(const CollisionGeometry<S>* o1, const CollisionGeometry<S>* o2,
+                   fcl::DistanceResult<S>& result) {
+  // Written directly: DistanceResult::update() keeps the old value for NaN.
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  result.min_distance = nan;
+  result.o1 = o1;
+  result.o2 = o2;
+  result.b1 = result.b2 = fcl::DistanceResult<S>::NONE;
+  result.nearest_points[0].setConstant(nan);
+  result.nearest_points[1].setConstant(nan);
+  return nan;
+}
+
 template <typename S>
 S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk<S>& disk2,
                      const Transform3<S>& X_W2, const fcl::DistanceRequest<S>& request,
@@ -65,6 +83,7 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
       g_method.load(std::memory_order_relaxed) == DiskDistanceMethod::almohamad_selim
           ? almohamadSelimDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2)
           : exactDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2);
+  if (std::isnan(answer.distance)) return answerNoDistance<S>(&disk1, &disk2, result);
   // Overlap: distance 0 with a common point as both nearest points, for signed and
   // unsigned requests alike (a zero-thickness disk has no interior to penetrate).
   result.update(answer.distance, &disk1, &disk2, fcl::DistanceResult<S>::NONE,
@@ -106,14 +125,31 @@ std::size_t answerDiskCollision(const Disk<S>& disk1, const Transform3<S>& X_W1,
 }
 
 // ---------------------------------------------------------------------------
-// 2. Wrappers for the GEOM_CYLINDER x GEOM_CYLINDER slots.
+// 2. Wrappers for the slots of FCL's tables that can see a Disk: the
+//    GEOM_CYLINDER row and column. Disk-disk pairs get fcl_disk's answers; a
+//    pair with one Disk whose poses describe no disk pair gets NaN / no contact
+//    (FCL's GJK would abort on NaN, facts: Debian keeps asserts on); every other
+//    pair goes to FCL's original entry unchanged.
 //
 // `Solver` is only passed through to FCL's original entry, never dereferenced
-// here, so one wrapper shape serves every table; `Slot` gives each patched table
-// its own saved original.
+// here, so one wrapper shape serves every table; `Table` gives each patched table
+// its own saved originals.
 
-template <typename S, typename Solver, int Slot>
+/// Whether a pair with a Disk may go to FCL: the Disk's pose is a disk pose and
+/// the other pose is finite (the other shape's rotation is FCL's business).
+template <typename S>
+bool fitForFcl(const Disk<S>* disk1, const Transform3<S>& tf1, const Disk<S>* disk2,
+               const Transform3<S>& tf2) {
+  const auto fit = [](const Disk<S>* disk, const Transform3<S>& tf) {
+    return disk ? isValidDiskPose(tf) && std::isfinite(disk->radius) && disk->radius > S(0)
+                : tf.matrix().allFinite();
+  };
+  return fit(disk1, tf1) && fit(disk2, tf2);
+}
+
+template <typename S, typename Solver, int Table, int Row, int Col>
 struct DistanceSlot {
+  static constexpr int kRow = Row, kCol = Col;
   using Entry = S (*)(const CollisionGeometry<S>*, const Transform3<S>&,
                       const CollisionGeometry<S>*, const Transform3<S>&, const Solver*,
                       const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);
@@ -122,15 +158,19 @@ struct DistanceSlot {
   static S call(const CollisionGeometry<S>* o1, const Transform3<S>& tf1,
                 const CollisionGeometry<S>* o2, const Transform3<S>& tf2, const Solver* solver,
                 const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
-    const Disk<S>* disk1 = asDisk(o1);
-    const Disk<S>* disk2 = disk1 ? asDisk(o2) : nullptr;
-    if (disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, request, result);
+    const Disk<S>* disk1 = Row == fcl::GEOM_CYLINDER ? asDisk(o1) : nullptr;
+    const Disk<S>* disk2 = Col == fcl::GEOM_CYLINDER ? asDisk(o2) : nullptr;
+    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, request, result);
+    if ((disk1 || disk2) && !fitForFcl(disk1, tf1, disk2, tf2)) {
+      return answerNoDistance(o1, o2, result);
+    }
     return original.load(std::memory_order_acquire)(o1, tf1, o2, tf2, solver, request, result);
   }
 };
 
-template <typename S, typename Solver, int Slot>
+template <typename S, typename Solver, int Table, int Row, int Col>
 struct CollisionSlot {
+  static constexpr int kRow = Row, kCol = Col;
   using Entry = std::size_t (*)(const CollisionGeometry<S>*, const Transform3<S>&,
                                 const CollisionGeometry<S>*, const Transform3<S>&,
                                 const Solver*, const fcl::CollisionRequest<S>&,
@@ -141,24 +181,49 @@ struct CollisionSlot {
                           const CollisionGeometry<S>* o2, const Transform3<S>& tf2,
                           const Solver* solver, const fcl::CollisionRequest<S>& request,
                           fcl::CollisionResult<S>& result) {
-    const Disk<S>* disk1 = asDisk(o1);
-    const Disk<S>* disk2 = disk1 ? asDisk(o2) : nullptr;
-    if (disk2) return answerDiskCollision(*disk1, tf1, *disk2, tf2, request, result);
+    const Disk<S>* disk1 = Row == fcl::GEOM_CYLINDER ? asDisk(o1) : nullptr;
+    const Disk<S>* disk2 = Col == fcl::GEOM_CYLINDER ? asDisk(o2) : nullptr;
+    if (disk1 && disk2) return answerDiskCollision(*disk1, tf1, *disk2, tf2, request, result);
+    // No contact can be shown for input that describes no pose.
+    if ((disk1 || disk2) && !fitForFcl(disk1, tf1, disk2, tf2)) return result.numContacts();
     return original.load(std::memory_order_acquire)(o1, tf1, o2, tf2, solver, request, result);
   }
 };
 
-/// Replaces table[GEOM_CYLINDER][GEOM_CYLINDER] by Wrapper::call, saving the
-/// original. Atomic stores: other threads may be dispatching non-disk pairs.
+/// Replaces table[kRow][kCol] by Wrapper::call, saving the original; an empty
+/// slot (a pair FCL does not support) stays empty. Atomic stores: other threads
+/// may be dispatching non-disk pairs.
 template <typename Wrapper, typename Table>
 void installIntoSlot(Table& matrix) {
-  auto& slot = matrix[fcl::GEOM_CYLINDER][fcl::GEOM_CYLINDER];
+  auto& slot = matrix[Wrapper::kRow][Wrapper::kCol];
   using Entry = typename Wrapper::Entry;
   Entry current = __atomic_load_n(reinterpret_cast<Entry*>(&slot), __ATOMIC_ACQUIRE);
-  if (current == &Wrapper::call) return;
+  if (current == nullptr || current == &Wrapper::call) return;
   Wrapper::original.store(current, std::memory_order_release);
   __atomic_store_n(reinterpret_cast<Entry*>(&slot), &Wrapper::call, __ATOMIC_RELEASE);
 }
+
+/// Wraps the GEOM_CYLINDER row and column of one distance or collision table.
+template <template <int, int> class Wrapper, typename Table, int... Types>
+void installIntoCylinderRowAndColumn(Table& matrix, std::integer_sequence<int, Types...>) {
+  (installIntoSlot<Wrapper<fcl::GEOM_CYLINDER, Types>>(matrix), ...);
+  (installIntoSlot<Wrapper<Types, fcl::GEOM_CYLINDER>>(matrix), ...);
+}
+
+template <typename S, typename Solver, int Table>
+struct TableWrappers {
+  template <int Row, int Col>
+  using Distance = DistanceSlot<S, Solver, Table, Row, Col>;
+  template <int Row, int Col>
+  using Collision = CollisionSlot<S, Solver, Table, Row, Col>;
+
+  template <typename DistanceMatrix, typename CollisionMatrix>
+  static void install(DistanceMatrix& distance_matrix, CollisionMatrix& collision_matrix) {
+    const auto types = std::make_integer_sequence<int, fcl::NODE_COUNT>();
+    installIntoCylinderRowAndColumn<Distance>(distance_matrix, types);
+    installIntoCylinderRowAndColumn<Collision>(collision_matrix, types);
+  }
+};
 
 // ---------------------------------------------------------------------------
 // 3a. The tables that code compiled against FCL's headers uses: float paths and
@@ -167,10 +232,8 @@ void installIntoSlot(Table& matrix) {
 
 template <typename Solver>
 void installIntoVisibleTables() {
-  using S = typename Solver::S;
-  installIntoSlot<DistanceSlot<S, Solver, 0>>(
-      fcl::getDistanceFunctionLookTable<Solver>().distance_matrix);
-  installIntoSlot<CollisionSlot<S, Solver, 0>>(
+  TableWrappers<typename Solver::S, Solver, 0>::install(
+      fcl::getDistanceFunctionLookTable<Solver>().distance_matrix,
       fcl::getCollisionFunctionLookTable<Solver>().collision_matrix);
 }
 
@@ -225,13 +288,10 @@ std::vector<bool> nonNullPattern(const Matrix& matrix) {
 
 /// Addresses of the arrays in libfcl's writable segments that look like `pattern`.
 std::vector<std::uintptr_t*> findTables(const LibfclSegments& segments,
-                                        const std::vector<bool>& pattern,
-                                        const std::vector<std::uintptr_t>& our_entries) {
+                                        const std::vector<bool>& pattern) {
   auto is_code = [&](std::uintptr_t a) {
     for (const auto& r : segments.executable)
       if (r.contains(a)) return true;
-    for (auto ours : our_entries)
-      if (a == ours) return true;
     return false;
   };
   std::vector<std::uintptr_t*> found;
@@ -257,15 +317,15 @@ std::vector<std::uintptr_t*> findTables(const LibfclSegments& segments,
 // opaque solver type; the ABI of the call is the same.
 struct OpaqueSolver;
 
-template <int Slot>
-using PrivateDistanceSlot = DistanceSlot<double, OpaqueSolver, Slot>;
-template <int Slot>
-using PrivateCollisionSlot = CollisionSlot<double, OpaqueSolver, Slot>;
-
-template <typename Wrapper>
-void installIntoPrivateTable(std::uintptr_t* table) {
-  using Entry = typename Wrapper::Entry;
-  installIntoSlot<Wrapper>(*reinterpret_cast<Entry(*)[fcl::NODE_COUNT][fcl::NODE_COUNT]>(table));
+template <int Table>
+void installIntoPrivateTables(std::uintptr_t* distance_table, std::uintptr_t* collision_table) {
+  using Wrappers = TableWrappers<double, OpaqueSolver, Table>;
+  using DistanceEntry = typename Wrappers::template Distance<0, 0>::Entry;
+  using CollisionEntry = typename Wrappers::template Collision<0, 0>::Entry;
+  using DistanceMatrix = DistanceEntry[fcl::NODE_COUNT][fcl::NODE_COUNT];
+  using CollisionMatrix = CollisionEntry[fcl::NODE_COUNT][fcl::NODE_COUNT];
+  Wrappers::install(*reinterpret_cast<DistanceMatrix*>(distance_table),
+                    *reinterpret_cast<CollisionMatrix*>(collision_table));
 }
 
 std::string hookFailureAdvice(const std::string& what) {
@@ -304,15 +364,10 @@ void installIntoLibfclPrivateTables() {
   using Libccd = fcl::detail::GJKSolver_libccd<double>;
   const fcl::detail::DistanceFunctionMatrix<Libccd> distance_reference;
   const fcl::detail::CollisionFunctionMatrix<Libccd> collision_reference;
-  const std::vector<std::uintptr_t> our_entries = {
-      reinterpret_cast<std::uintptr_t>(&PrivateDistanceSlot<0>::call),
-      reinterpret_cast<std::uintptr_t>(&PrivateDistanceSlot<1>::call),
-      reinterpret_cast<std::uintptr_t>(&PrivateCollisionSlot<0>::call),
-      reinterpret_cast<std::uintptr_t>(&PrivateCollisionSlot<1>::call)};
   const auto distance_tables =
-      findTables(segments, nonNullPattern(distance_reference.distance_matrix), our_entries);
+      findTables(segments, nonNullPattern(distance_reference.distance_matrix));
   const auto collision_tables =
-      findTables(segments, nonNullPattern(collision_reference.collision_matrix), our_entries);
+      findTables(segments, nonNullPattern(collision_reference.collision_matrix));
   if (distance_tables.size() != kPrivateTablesPerKind ||
       collision_tables.size() != kPrivateTablesPerKind) {
     throw std::runtime_error(hookFailureAdvice(
@@ -320,10 +375,10 @@ void installIntoLibfclPrivateTables() {
         std::to_string(collision_tables.size()) + " collision tables in " + segments.path +
         ", expected " + std::to_string(kPrivateTablesPerKind) + " of each"));
   }
-  installIntoPrivateTable<PrivateDistanceSlot<0>>(distance_tables[0]);
-  installIntoPrivateTable<PrivateDistanceSlot<1>>(distance_tables[1]);
-  installIntoPrivateTable<PrivateCollisionSlot<0>>(collision_tables[0]);
-  installIntoPrivateTable<PrivateCollisionSlot<1>>(collision_tables[1]);
+  // Which distance table goes with which collision table does not matter: each
+  // Table index only keeps its own wrappers' saved originals apart.
+  installIntoPrivateTables<0>(distance_tables[0], collision_tables[0]);
+  installIntoPrivateTables<1>(distance_tables[1], collision_tables[1]);
 }
 
 // ---------------------------------------------------------------------------

@@ -9,7 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
+
+#include "fcl_disk/disk_pair.h"
 
 namespace fcl_disk {
 namespace internal {
@@ -17,6 +20,28 @@ namespace internal {
 using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
+
+/// Whether (r1, X_W1, r2, X_W2) describes two disks: radii finite and > 0, poses
+/// accepted by isValidDiskPose(). The solvers answer anything else with
+/// nanDistanceResult().
+template <typename S>
+bool isValidDiskPair(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2) {
+  const auto valid_radius = [](S r) { return std::isfinite(r) && r > S(0); };
+  return valid_radius(r1) && valid_radius(r2) && isValidDiskPose(X_W1) && isValidDiskPose(X_W2);
+}
+
+/// The answer to input that describes no disk pair: NaN distance, bound and
+/// points, never a finite made-up number.
+template <typename S>
+DiskDistanceResult<S> nanDistanceResult() {
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  DiskDistanceResult<S> result;
+  result.distance = nan;
+  result.lower_bound = nan;
+  result.p_W1.setConstant(nan);
+  result.p_W2.setConstant(nan);
+  return result;
+}
 
 struct PairInFrame1 {
   Vec3 c;     ///< centre of disk 2 in disk 1's frame.
@@ -43,6 +68,11 @@ struct PairInFrame1 {
     pair.s = std::sqrt(pair.m.squaredNorm());
     return pair;
   }
+
+  /// The length every tolerance scales with: r1 + r2 + |c1 - c2| (> 0). The
+  /// problem is homogeneous in length, so tolerances relative to it keep the
+  /// solvers' accuracy relative at any scale (1e-9 and 1e9 alike).
+  double scale() const { return r1 + r2 + c.norm(); }
 
   /// The same pair seen from disk 2: disk 1 becomes "disk 2" in disk 2's frame.
   PairInFrame1 swapped() const { return make(-(R.transpose() * c), R.transpose(), r2, r1); }
@@ -85,12 +115,11 @@ inline std::optional<double> coplanarOverlapMidpoint(double D, double r1, double
 constexpr double kTouchingTolerance = 1e-13;
 
 /// A point shared by both disks (frame 1), or nullopt if they are apart by more
-/// than kTouchingTolerance * scale (scale = max(1, r1 + r2 + |c|)).
+/// than kTouchingTolerance * pair.scale().
 /// Crossing planes: the two chords on the planes' intersection line; parallel
 /// planes (s == 0): coplanar overlap along the line of centres.
 inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
-  const double slack =
-      kTouchingTolerance * std::max(1.0, pair.r1 + pair.r2 + pair.c.norm());
+  const double slack = kTouchingTolerance * pair.scale();
   const double cz = pair.c.z();
   // Disk 2 spans heights [cz - r2 s, cz + r2 s] over plane 1.
   if (!(std::abs(cz) <= pair.r2 * pair.s + slack)) return std::nullopt;  // also NaN

@@ -1,7 +1,7 @@
 // Closed-form disk-disk intersection test, used by fcl::collide on disk pairs.
 #pragma once
 
-#include <fcl/common/types.h>
+#include <fcl_disk/disk_pair.h>
 
 namespace fcl_disk {
 
@@ -30,9 +30,12 @@ struct DiskContact {
 /// pos: crossing planes -> the midpoint of the common segment of the two chords
 /// on the planes' intersection line; coplanar -> the midpoint of the overlap of
 /// the two disks along the line of centres (the common centre if concentric).
-/// Decision tolerance: exact to rounding; a pair whose true distance is below
-/// about 1e-15 * max(1, r1 + r2 + |c1 - c2|) may be reported either way.
-/// Returns false (contact untouched) when they are apart or the input is NaN.
+/// Decision tolerance: disks closer than 1e-13 * (r1 + r2 + |c1 - c2|) count as
+/// touching (a touching pair built exactly in one frame touches only to rounding
+/// in another); such a pair may be reported either way.
+/// Returns false (contact untouched) when they are apart or the input describes
+/// no disk pair (a radius that is not finite and > 0, a pose rejected by
+/// isValidDiskPose(): NaN, infinite, not orthonormal).
 template <typename S>
 bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2,
                     DiskContact<S>* contact = nullptr);

@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <type_traits>
 
 namespace fcl_disk {
 
@@ -34,6 +36,32 @@ struct DiskDistanceResult {
 
   S certifiedGap() const { return distance - lower_bound; }
 };
+
+/// How far a disk pose's rotation may be from orthonormal, max_ij |(R^T R - I)_ij|,
+/// and still be accepted. Far above the rounding of any rotation built or composed
+/// in S (a few ulps, growing by about an ulp per composition: 1e-6 is ~1e10 double
+/// ulps and covers rotations built in float and widened to double; 1e-4 is ~1000
+/// float ulps), far below a deliberate scale or shear, which would turn the disk
+/// into an ellipse. An accepted rotation is used as given: its disk differs from
+/// a true one by at most defect * r, so distances may differ by
+/// defect * (r1 + r2) beyond the solvers' stated bounds.
+template <typename S>
+constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) : S(1e-6);
+
+/// Whether X_WD can be a disk's pose: a finite translation and a rotation within
+/// kRotationDefectTolerance of orthonormal (reflections, det = -1, are accepted:
+/// the reflected disk is the same set). Every fcl_disk query on a disk whose pose
+/// fails this returns a NaN distance and no contact (docs/robustness.md): NaN or
+/// infinite input has no meaningful answer, and a non-orthonormal rotation does
+/// not describe a disk.
+template <typename S>
+bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
+  if (!X_WD.translation().allFinite()) return false;
+  const fcl::Matrix3<S> gram = X_WD.linear().transpose() * X_WD.linear();
+  // Written as "all within", so NaN (from NaN or infinite entries) fails.
+  return ((gram - fcl::Matrix3<S>::Identity()).array().abs() <=
+          kRotationDefectTolerance<S>).all();
+}
 
 /// Length of the projection of w onto the plane of the disk with rotation R
 /// (|P w| = sqrt((u.w)^2 + (v.w)^2)), computed from the in-plane axes because

@@ -54,8 +54,12 @@ namespace fcl_disk {
 ///   stops at a certified gap of 1e-14 * scale, at the rounding floor (flat,
 ///   near-degenerate optima, e.g. next to a face case), or after 16 iterations;
 ///   the best pair found is returned and lower_bound says how well it is proven.
-/// @pre r1, r2 > 0 and finite; X_Wi has an orthonormal rotation. Non-finite
-///      input yields a NaN distance.
+/// Invalid input never crashes and never gets a finite made-up answer: a radius
+/// that is not finite and > 0, or a pose rejected by isValidDiskPose() (NaN or
+/// infinite entries, a rotation further than kRotationDefectTolerance from
+/// orthonormal) gives NaN distance, lower_bound and points (feature unspecified).
+/// An accepted, slightly non-orthonormal rotation is used as given (see
+/// kRotationDefectTolerance for what that costs).
 template <typename S>
 DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                         const fcl::Transform3<S>& X_W2);

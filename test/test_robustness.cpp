@@ -1,0 +1,351 @@
+// Bad input: invalid radii, NaN and infinite poses, rotations that are not
+// orthonormal, through the solvers, the intersection test and every FCL entry
+// point that can see a Disk (docs/robustness.md). Debian's FCL aborts on NaN in
+// GJK, so every test here that reaches FCL with a NaN would crash the process if
+// a guard were missing.
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl_disk/fcl_disk.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace {
+
+template <typename S>
+using Transform3 = fcl::Transform3<S>;
+template <typename S>
+using Vector3 = fcl::Vector3<S>;
+
+template <typename S>
+Transform3<S> tiltedPose(const Vector3<S>& centre, const Vector3<S>& normal) {
+  Transform3<S> X = Transform3<S>::Identity();
+  X.translation() = centre;
+  X.linear() = Eigen::Quaternion<S>::FromTwoVectors(Vector3<S>::UnitZ(), normal.normalized())
+                   .toRotationMatrix();
+  return X;
+}
+
+/// A separated, a crossing and a coplanar-overlapping pair: every answer path.
+template <typename S>
+std::vector<std::pair<Transform3<S>, Transform3<S>>> basePairs() {
+  return {{tiltedPose<S>({0, 0, 0}, {0, 0, 1}), tiltedPose<S>({0.5, 0.2, 1.5}, {1, 2, 3})},
+          {tiltedPose<S>({0, 0, 0}, {0, 0, 1}), tiltedPose<S>({0.3, 0, 0.1}, {1, 0, 0})},
+          {tiltedPose<S>({0, 0, 0}, {0, 0, 1}), tiltedPose<S>({0.8, 0, 0}, {0, 0, 1})}};
+}
+
+/// Every single-entry corruption of a pose by a non-finite value: each
+/// translation and rotation entry, set to NaN, +inf and -inf.
+template <typename S>
+std::vector<std::pair<std::string, Transform3<S>>> nonFiniteVariants(const Transform3<S>& X) {
+  const S values[] = {std::numeric_limits<S>::quiet_NaN(), std::numeric_limits<S>::infinity(),
+                      -std::numeric_limits<S>::infinity()};
+  std::vector<std::pair<std::string, Transform3<S>>> out;
+  for (S value : values) {
+    for (int row = 0; row < 3; ++row) {
+      for (int col = 0; col < 4; ++col) {
+        Transform3<S> bad = X;
+        bad.matrix()(row, col) = value;
+        out.emplace_back("entry (" + std::to_string(row) + "," + std::to_string(col) + ") = " +
+                             std::to_string(double(value)),
+                         bad);
+      }
+    }
+  }
+  return out;
+}
+
+template <typename S>
+void expectAllNaN(const fcl_disk::DiskDistanceResult<S>& r) {
+  EXPECT_TRUE(std::isnan(r.distance));
+  EXPECT_TRUE(std::isnan(r.lower_bound));
+  EXPECT_TRUE(r.p_W1.array().isNaN().all());
+  EXPECT_TRUE(r.p_W2.array().isNaN().all());
+}
+
+/// What every entry point must answer for a pair that describes no disk pair:
+/// NaN from both solvers, no intersection, NaN through fcl::distance (objects and
+/// geometries, both GJK solver types, signed and unsigned) and no contact from
+/// fcl::collide.
+template <typename S>
+void expectNoAnswerAnywhere(S r1, const Transform3<S>& X1, S r2, const Transform3<S>& X2) {
+  expectAllNaN(fcl_disk::exactDiskDistance(r1, X1, r2, X2));
+  expectAllNaN(fcl_disk::almohamadSelimDiskDistance(r1, X1, r2, X2));
+  EXPECT_FALSE(fcl_disk::intersectDisks(r1, X1, r2, X2));
+  if (!(std::isfinite(r1) && r1 > 0 && std::isfinite(r2) && r2 > 0)) return;  // no Disk exists
+  auto disk1 = std::make_shared<fcl_disk::Disk<S>>(r1);
+  auto disk2 = std::make_shared<fcl_disk::Disk<S>>(r2);
+  fcl::CollisionObject<S> a(disk1, X1), b(disk2, X2);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    for (bool signed_distance : {false, true}) {
+      fcl::DistanceRequest<S> request;
+      request.gjk_solver_type = solver;
+      request.enable_signed_distance = signed_distance;
+      fcl::DistanceResult<S> by_objects, by_geometries;
+      EXPECT_TRUE(std::isnan(fcl::distance(&a, &b, request, by_objects)));
+      EXPECT_TRUE(std::isnan(by_objects.min_distance));
+      EXPECT_TRUE(by_objects.nearest_points[0].array().isNaN().all());
+      EXPECT_TRUE(std::isnan(
+          fcl::distance(disk1.get(), X1, disk2.get(), X2, request, by_geometries)));
+      EXPECT_TRUE(std::isnan(by_geometries.min_distance));
+    }
+    fcl::CollisionRequest<S> request;
+    request.gjk_solver_type = solver;
+    request.enable_contact = true;
+    fcl::CollisionResult<S> result;
+    EXPECT_EQ(fcl::collide(&a, &b, request, result), 0u);
+    EXPECT_FALSE(result.isCollision());
+  }
+}
+
+template <typename S>
+class Robustness : public ::testing::Test {};
+using ScalarTypes = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(Robustness, ScalarTypes);
+
+TYPED_TEST(Robustness, InvalidRadiusThrowsNamingTheValue) {
+  using S = TypeParam;
+  for (S radius : {S(0), S(-1.5), std::numeric_limits<S>::quiet_NaN(),
+                   std::numeric_limits<S>::infinity(), -std::numeric_limits<S>::infinity()}) {
+    try {
+      fcl_disk::Disk<S> disk(radius);
+      ADD_FAILURE() << "no exception for radius " << radius;
+    } catch (const std::invalid_argument& error) {
+      std::ostringstream value;
+      value << radius;
+      EXPECT_NE(std::string(error.what()).find(value.str()), std::string::npos) << error.what();
+    }
+  }
+}
+
+TYPED_TEST(Robustness, InvalidRadiusInSolversGivesNaN) {
+  using S = TypeParam;
+  for (const auto& [X1, X2] : basePairs<S>()) {
+    for (S radius : {S(0), S(-1), std::numeric_limits<S>::quiet_NaN(),
+                     std::numeric_limits<S>::infinity()}) {
+      SCOPED_TRACE(radius);
+      expectNoAnswerAnywhere<S>(radius, X1, S(1), X2);
+      expectNoAnswerAnywhere<S>(S(1), X1, radius, X2);
+    }
+  }
+}
+
+TYPED_TEST(Robustness, NonFinitePoseGivesNaNEverywhere) {
+  using S = TypeParam;
+  for (const auto& [X1, X2] : basePairs<S>()) {
+    for (const auto& [what, bad] : nonFiniteVariants<S>(X1)) {
+      SCOPED_TRACE("disk 1 " + what);
+      expectNoAnswerAnywhere<S>(S(1), bad, S(0.7), X2);
+    }
+    for (const auto& [what, bad] : nonFiniteVariants<S>(X2)) {
+      SCOPED_TRACE("disk 2 " + what);
+      expectNoAnswerAnywhere<S>(S(1), X1, S(0.7), bad);
+    }
+  }
+}
+
+// A Disk's radius is a public member of fcl::Cylinder; one set to NaN after
+// construction must still give NaN, not a made-up number.
+TYPED_TEST(Robustness, RadiusCorruptedAfterConstructionGivesNaN) {
+  using S = TypeParam;
+  auto disk1 = std::make_shared<fcl_disk::Disk<S>>(S(1));
+  auto disk2 = std::make_shared<fcl_disk::Disk<S>>(S(1));
+  auto sphere = std::make_shared<fcl::Sphere<S>>(S(0.5));
+  disk1->radius = std::numeric_limits<S>::quiet_NaN();
+  const auto [X1, X2] = basePairs<S>().front();
+  for (auto other : {std::shared_ptr<fcl::CollisionGeometry<S>>(disk2),
+                     std::shared_ptr<fcl::CollisionGeometry<S>>(sphere)}) {
+    fcl::CollisionObject<S> a(disk1, X1), b(other, X2);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> result;
+    EXPECT_TRUE(std::isnan(fcl::distance(&a, &b, request, result)));
+    fcl::CollisionRequest<S> collision_request;
+    fcl::CollisionResult<S> collision_result;
+    EXPECT_EQ(fcl::collide(&a, &b, collision_request, collision_result), 0u);
+  }
+}
+
+/// The shapes FCL pairs a Disk with through its GEOM_CYLINDER row and column.
+template <typename S>
+std::vector<std::pair<std::string, std::shared_ptr<fcl::CollisionGeometry<S>>>> otherShapes() {
+  return {{"sphere", std::make_shared<fcl::Sphere<S>>(S(0.4))},
+          {"box", std::make_shared<fcl::Box<S>>(S(0.3), S(0.6), S(0.2))},
+          {"capsule", std::make_shared<fcl::Capsule<S>>(S(0.2), S(0.5))},
+          {"cone", std::make_shared<fcl::Cone<S>>(S(0.3), S(0.5))},
+          {"ellipsoid", std::make_shared<fcl::Ellipsoid<S>>(S(0.3), S(0.4), S(0.5))},
+          {"cylinder", std::make_shared<fcl::Cylinder<S>>(S(0.3), S(0.5))}};
+}
+
+// FCL's GJK asserts on NaN (Debian keeps asserts): a NaN pose on either side of
+// a Disk-versus-shape pair must be answered before FCL sees it.
+TYPED_TEST(Robustness, DiskVersusOtherShapesWithNonFinitePoseGivesNaN) {
+  using S = TypeParam;
+  auto disk = std::make_shared<fcl_disk::Disk<S>>(S(1));
+  const auto [X1, X2] = basePairs<S>().front();
+  for (const auto& [name, shape] : otherShapes<S>()) {
+    for (int corrupt = 0; corrupt < 2; ++corrupt) {
+      for (S value : {std::numeric_limits<S>::quiet_NaN(), std::numeric_limits<S>::infinity()}) {
+        Transform3<S> disk_pose = X1, shape_pose = X2;
+        (corrupt == 0 ? disk_pose : shape_pose).translation().x() = value;
+        SCOPED_TRACE(name + (corrupt == 0 ? ": disk pose " : ": shape pose ") +
+                     std::to_string(double(value)));
+        fcl::CollisionObject<S> disk_object(disk, disk_pose), shape_object(shape, shape_pose);
+        for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+          for (bool disk_first : {true, false}) {
+            const auto* a = disk_first ? &disk_object : &shape_object;
+            const auto* b = disk_first ? &shape_object : &disk_object;
+            fcl::DistanceRequest<S> request;
+            request.gjk_solver_type = solver;
+            fcl::DistanceResult<S> result;
+            EXPECT_TRUE(std::isnan(fcl::distance(a, b, request, result)));
+            EXPECT_TRUE(std::isnan(result.min_distance));
+            fcl::CollisionRequest<S> collision_request;
+            collision_request.gjk_solver_type = solver;
+            fcl::CollisionResult<S> collision_result;
+            EXPECT_EQ(fcl::collide(a, b, collision_request, collision_result), 0u);
+          }
+        }
+      }
+    }
+  }
+}
+
+// Valid poses on the same pairs still reach FCL's own answer (the guard only
+// intercepts bad input).
+TYPED_TEST(Robustness, DiskVersusOtherShapesWithValidPoseIsAnswered) {
+  using S = TypeParam;
+  auto disk = std::make_shared<fcl_disk::Disk<S>>(S(1));
+  const auto [X1, X2] = basePairs<S>().front();
+  for (const auto& [name, shape] : otherShapes<S>()) {
+    SCOPED_TRACE(name);
+    fcl::CollisionObject<S> a(disk, X1), b(shape, X2);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> result;
+    const S d = fcl::distance(&a, &b, request, result);
+    EXPECT_TRUE(std::isfinite(d));
+    EXPECT_GT(d, S(0));
+  }
+}
+
+// ---- rotations that are not orthonormal --------------------------------------
+
+template <typename S>
+Transform3<S> withLinear(Transform3<S> X, const fcl::Matrix3<S>& linear) {
+  X.linear() = linear;
+  return X;
+}
+
+TYPED_TEST(Robustness, RotationFarFromOrthonormalGivesNaN) {
+  using S = TypeParam;
+  // Ten times the tolerance: a scale, a shear, a projection and a zero matrix.
+  const S defect = 10 * fcl_disk::kRotationDefectTolerance<S>;
+  for (const auto& [X1, X2] : basePairs<S>()) {
+    fcl::Matrix3<S> shear = fcl::Matrix3<S>::Identity();
+    shear(0, 1) = defect;
+    const fcl::Matrix3<S> R = X2.linear();
+    const std::vector<std::pair<std::string, fcl::Matrix3<S>>> bad = {
+        {"scaled", (1 + defect) * R},
+        {"sheared", R * shear},
+        {"flattened", R * Vector3<S>(1, 1, 0).asDiagonal()},
+        {"zero", fcl::Matrix3<S>::Zero()}};
+    for (const auto& [name, linear] : bad) {
+      SCOPED_TRACE(name);
+      EXPECT_FALSE(fcl_disk::isValidDiskPose(withLinear(X2, linear)));
+      expectNoAnswerAnywhere<S>(S(1), X1, S(0.7), withLinear(X2, linear));
+      expectNoAnswerAnywhere<S>(S(0.7), withLinear(X2, linear), S(1), X1);
+    }
+  }
+}
+
+TYPED_TEST(Robustness, RotationWithinToleranceIsUsedAsGiven) {
+  using S = TypeParam;
+  // Half the tolerance, as a scale of the whole rotation: the disk grows by
+  // that factor, so the distance may move by defect * (r1 + r2) (disk_pair.h).
+  const S defect = fcl_disk::kRotationDefectTolerance<S> / 4;
+  for (const auto& [X1, X2] : basePairs<S>()) {
+    const Transform3<S> X2_scaled =
+        withLinear<S>(X2, fcl::Matrix3<S>((1 + defect) * X2.linear()));
+    ASSERT_TRUE(fcl_disk::isValidDiskPose(X2_scaled));
+    const auto exact = fcl_disk::exactDiskDistance<S>(S(1), X1, S(0.7), X2);
+    const auto perturbed = fcl_disk::exactDiskDistance<S>(S(1), X1, S(0.7), X2_scaled);
+    ASSERT_TRUE(std::isfinite(perturbed.distance));
+    const double allowance = 2 * double(defect) * (1 + 0.7) * 2;  // gram defect ~ 2 * scale - 1
+    EXPECT_NEAR(double(perturbed.distance), double(exact.distance), allowance);
+  }
+}
+
+// A reflection (det = -1) maps the local disk onto the same set as the rotation
+// with the opposite third column, so the answers agree.
+TYPED_TEST(Robustness, ReflectedFrameGivesTheSameDistance) {
+  using S = TypeParam;
+  const double tolerance = std::is_same<S, float>::value ? 1e-5 : 1e-12;
+  for (const auto& [X1, X2] : basePairs<S>()) {
+    for (int which = 0; which < 2; ++which) {
+      Transform3<S> R1 = X1, R2 = X2;
+      (which == 0 ? R1 : R2).linear().col(2) *= S(-1);
+      ASSERT_TRUE(fcl_disk::isValidDiskPose(which == 0 ? R1 : R2));
+      const auto proper = fcl_disk::exactDiskDistance<S>(S(1), X1, S(0.7), X2);
+      const auto reflected = fcl_disk::exactDiskDistance<S>(S(1), R1, S(0.7), R2);
+      EXPECT_NEAR(double(reflected.distance), double(proper.distance), tolerance);
+      const auto proper_report = fcl_disk::almohamadSelimDiskDistance<S>(S(1), X1, S(0.7), X2);
+      const auto reflected_report = fcl_disk::almohamadSelimDiskDistance<S>(S(1), R1, S(0.7), R2);
+      EXPECT_NEAR(double(reflected_report.distance), double(proper_report.distance), tolerance);
+      EXPECT_EQ(fcl_disk::intersectDisks<S>(S(1), R1, S(0.7), R2),
+                fcl_disk::intersectDisks<S>(S(1), X1, S(0.7), X2));
+    }
+  }
+}
+
+// ---- the broadphase with a bad object -------------------------------------------
+
+/// A row of unit disks 1.5 apart, the middle one with a NaN pose.
+template <typename S>
+struct SceneWithNaNDisk {
+  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> objects;
+  fcl::DynamicAABBTreeCollisionManager<S> manager;
+
+  explicit SceneWithNaNDisk(int count) {
+    auto disk = std::make_shared<fcl_disk::Disk<S>>(S(1));
+    for (int i = 0; i < count; ++i) {
+      Transform3<S> X = tiltedPose<S>({S(1.5) * S(i), 0, 0}, {0, S(0.2) * S(i % 3), 1});
+      if (i == count / 2) X.translation().y() = std::numeric_limits<S>::quiet_NaN();
+      objects.push_back(std::make_unique<fcl::CollisionObject<S>>(disk, X));
+      manager.registerObject(objects.back().get());
+    }
+    manager.setup();
+  }
+};
+
+// The tree must not crash or hang; collide finds only pairs of valid disks.
+// distance: the scene's nearest distance is NaN if the NaN disk was queried
+// (DistanceResult keeps NaN), else the minimum over the pairs that were: never a
+// distance that some queried pair does not have.
+TYPED_TEST(Robustness, BroadphaseWithNaNDiskTerminates) {
+  using S = TypeParam;
+  SceneWithNaNDisk<S> scene(9);
+  fcl::DefaultCollisionData<S> collision;
+  collision.request.num_max_contacts = 100;
+  scene.manager.collide(&collision, fcl::DefaultCollisionFunction<S>);
+  std::vector<fcl::Contact<S>> contacts;
+  collision.result.getContacts(contacts);
+  for (const auto& contact : contacts) EXPECT_TRUE(contact.pos.allFinite());
+  fcl::DefaultDistanceData<S> distance;
+  scene.manager.distance(&distance, fcl::DefaultDistanceFunction<S>);
+  const S d = distance.result.min_distance;
+  EXPECT_TRUE(std::isnan(d) || d >= S(0)) << d;
+}
+
+}  // namespace
