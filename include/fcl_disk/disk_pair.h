@@ -55,12 +55,18 @@ constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) :
 /// infinite input has no meaningful answer, and a non-orthonormal rotation does
 /// not describe a disk.
 template <typename S>
-bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
-  if (!X_WD.translation().allFinite()) return false;
-  const fcl::Matrix3<S> gram = X_WD.linear().transpose() * X_WD.linear();
-  // Written as "all within", so NaN (from NaN or infinite entries) fails.
-  return ((gram - fcl::Matrix3<S>::Identity()).array().abs() <=
-          kRotationDefectTolerance<S>).all();
+inline bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
+  // Runs on every query, so written out: the translation's finiteness (x - x is
+  // 0 only for finite x) and the six distinct entries of R^T R - I.
+  const auto& M = X_WD.matrix();
+  const S tolerance = kRotationDefectTolerance<S>;
+  const auto dot = [&M](int i, int j) {
+    return M(0, i) * M(0, j) + M(1, i) * M(1, j) + M(2, i) * M(2, j);
+  };
+  const auto within = [tolerance](S defect) { return std::abs(defect) <= tolerance; };
+  return (M(0, 3) - M(0, 3) == S(0)) & (M(1, 3) - M(1, 3) == S(0)) &
+         (M(2, 3) - M(2, 3) == S(0)) & within(dot(0, 0) - S(1)) & within(dot(1, 1) - S(1)) &
+         within(dot(2, 2) - S(1)) & within(dot(0, 1)) & within(dot(0, 2)) & within(dot(1, 2));
 }
 
 /// Length of the projection of w onto the plane of the disk with rotation R
