@@ -23,7 +23,8 @@ namespace fcl_disk {
 /// g(w) = w.(c2 - c1) - r1|P1 w| - r2|P2 w| (a lower bound for every unit w);
 /// if the gap stays open, a global search along disk 1's rim as fallback.
 ///
-/// Guarantee (double): |distance - d_true| <= 1e-12 * max(1, r1 + r2 + |c1 - c2|)
+/// Guarantee (double): |distance - d_true| <= 1e-12 * (r1 + r2 + |c1 - c2|): relative,
+/// at every length scale (tested for radii 1e-9..1e9, coordinates up to 1e9),
 /// and both points lie on their disks to the same bound plus the rounding of
 /// storing them in world coordinates (ulp(|c_i|)); distance == |p_W2 - p_W1| up
 /// to that rounding. lower_bound is the duality certificate (at the returned
