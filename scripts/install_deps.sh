@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages fcl_disk needs to build, test, benchmark and plot.
-# The one place the package list lives: scripts/test.sh and .ci/run use this.
+# The one place the package lists live: scripts/test.sh, scripts/fuzz.sh and .ci/run use this.
 # Idempotent: does nothing when every package is already installed.
+#   ./scripts/install_deps.sh               # the base list
+#   ./scripts/install_deps.sh --sanitizers  # the base list and the fuzzing/sanitizer tools
 set -euo pipefail
 
 PACKAGES=(
@@ -15,6 +17,18 @@ PACKAGES=(
   libbenchmark-dev
   python3-matplotlib
 )
+
+# Clang with libFuzzer and the sanitizer runtimes (scripts/fuzz.sh, docs/fuzzing.md).
+SANITIZER_PACKAGES=(
+  clang-14
+  libclang-rt-14-dev
+)
+
+case "${1:-}" in
+  "") ;;
+  --sanitizers) PACKAGES+=("${SANITIZER_PACKAGES[@]}") ;;
+  *) echo "usage: $0 [--sanitizers]" >&2; exit 2 ;;
+esac
 
 missing=()
 for package in "${PACKAGES[@]}"; do

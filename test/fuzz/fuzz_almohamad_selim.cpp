@@ -1,0 +1,84 @@
+// libFuzzer target: fcl_disk::almohamadSelimDiskDistance, double and float.
+//
+// The 1994 algorithm is not exact (almohamad_selim.h), so the invariants are
+// what its header promises: a real pair of points on the disks with distance
+// |p_W2 - p_W1|, hence an upper bound on the exact distance, and a lower_bound
+// that is a sound certificate. Non-finite input: NaN distance, lower_bound and
+// points. Other invalid input: no crash, and NaN or a finite distance >= 0.
+#include <fcl_disk/almohamad_selim.h>
+#include <fcl_disk/exact_distance.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_checks.h"
+
+namespace fcl_disk_fuzz {
+namespace {
+
+template <typename S>
+void checkAlmohamadSelim(const DiskPairInput<S>& in) {
+  using E = Eps<S>;
+  const auto args = solverArguments(in);
+  const auto report =
+      fcl_disk::almohamadSelimDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const double d = report.distance;
+  const Vector3d p = report.p_W1.template cast<double>(), q = report.p_W2.template cast<double>();
+  const auto reportText = [&] {
+    return "Almohamad-Selim distance " + numberText(d) + ", p_W1 " + vectorText(p) + ", p_W2 " +
+           vectorText(q) + ", lower_bound " + numberText(report.lower_bound);
+  };
+
+  if (in.anyNonFinite()) {
+    require(std::isnan(d) && std::isnan(double(report.lower_bound)) &&
+                p.array().isNaN().all() && q.array().isNaN().all(),
+            "Almohamad-Selim: non-finite input gives NaN distance, lower_bound and points", in,
+            reportText);
+    return;
+  }
+  if (!in.valid()) {
+    require(acceptableInvalidDistance(in, d),
+            "Almohamad-Selim: invalid input gives NaN or a distance >= 0 (+inf only above kSafeMagnitude)", in,
+            reportText);
+    return;
+  }
+
+  const double r1 = args.r1, r2 = args.r2;
+  const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
+  const Scales scale = scalesOf(in);
+  require(std::isfinite(d) && d >= 0 && p.allFinite() && q.allFinite(),
+          "Almohamad-Selim: valid input gives a finite distance >= 0 and finite points", in,
+          reportText);
+
+  // Closed forms, no iteration: only rounding (test_tolerances.h), plus
+  // storing the points in world coordinates.
+  const double consistency =
+      kBoundSafetyFactor * (E::kAlmohamadSelimConsistencyRelative * scale.distance +
+                            storageRounding<S>({X_W1.translation(), X_W2.translation(), p, q}));
+  require(offDisk(p, r1, X_W1) <= consistency, "Almohamad-Selim: p_W1 lies on disk 1", in,
+          reportText);
+  require(offDisk(q, r2, X_W2) <= consistency, "Almohamad-Selim: p_W2 lies on disk 2", in,
+          reportText);
+  require(std::abs((q - p).norm() - d) <= consistency,
+          "Almohamad-Selim: |p_W2 - p_W1| == distance", in, reportText);
+
+  // A real pair bounds the distance from above; the certificate from below.
+  const auto exact = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const double both_solvers =
+      consistency + kBoundSafetyFactor * E::kExactDistanceRelative * scale.distance;
+  const auto withExact = [&] { return "exact distance " + numberText(exact.distance) + "; " + reportText(); };
+  require(double(exact.distance) - d <= both_solvers,
+          "Almohamad-Selim: distance >= exact distance (an upper bound)", in, withExact);
+  require(double(report.lower_bound) - double(exact.distance) <= both_solvers,
+          "Almohamad-Selim: lower_bound <= exact distance (a sound certificate)", in, withExact);
+}
+
+}  // namespace
+}  // namespace fcl_disk_fuzz
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return fcl_disk_fuzz::forBothScalars(data, size, [](const auto& pair, fcl_disk_fuzz::ByteReader&) {
+    fcl_disk_fuzz::checkAlmohamadSelim(pair);
+  });
+}

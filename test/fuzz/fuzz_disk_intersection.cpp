@@ -1,0 +1,133 @@
+// libFuzzer target: fcl_disk::intersectDisks, double and float.
+//
+// Valid input: the verdict is the exact solver's "distance == 0", except
+// within the touching band (a translation of disk 2 by at most the band flips
+// the exact verdict), where either answer is acceptable; the contact point lies
+// on both disks, the normal is unit, the depth finite and >= 0, and translating
+// disk 2 by (depth + a small step) along the normal separates the disks and
+// leaves them no further apart than that translation (disk_intersection.h).
+// Asking for the contact does not change the verdict. Non-finite input: false
+// (the header: "Returns false ... when the input is NaN"). Other invalid input:
+// no crash.
+#include <fcl_disk/disk_intersection.h>
+#include <fcl_disk/exact_distance.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "fuzz_checks.h"
+
+namespace fcl_disk_fuzz {
+namespace {
+
+/// Whether translating disk 2 by `band` (either sign) along either normal, the
+/// planes' common line, the line of centres or the nearest direction changes
+/// the exact solver's intersecting/apart verdict: then the pose is within the
+/// band of touching, and either verdict is acceptable (as test_properties.cpp).
+template <typename S>
+bool exactVerdictFlipsWithin(const DiskPairInput<S>& in,
+                             const fcl_disk::DiskDistanceResult<S>& exact, double band) {
+  const auto args = solverArguments(in);
+  const bool verdict_intersecting = exact.distance <= 0;
+  const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
+  const Vector3d n1 = X_W1.linear().col(2), n2 = X_W2.linear().col(2);
+  std::vector<Vector3d> directions = {n1.normalized(), n2.normalized()};
+  const Vector3d common_line = n1.cross(n2);
+  if (common_line.norm() > 0) directions.push_back(common_line.normalized());
+  const Vector3d centres = X_W2.translation() - X_W1.translation();
+  if (centres.norm() > 0) directions.push_back(centres.normalized());
+  const Vector3d nearest = (exact.p_W2 - exact.p_W1).template cast<double>();
+  if (nearest.norm() > 0) directions.push_back(nearest.normalized());
+  for (const Vector3d& direction : directions) {
+    for (const double sign : {1.0, -1.0}) {
+      fcl::Transform3<S> moved_X_W2 = in.X_W2;
+      moved_X_W2.translation() = (X_W2.translation() + sign * band * direction).template cast<S>();
+      const auto moved = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, moved_X_W2);
+      if ((moved.distance <= 0) != verdict_intersecting) return true;
+    }
+  }
+  return false;
+}
+
+template <typename S>
+void checkIntersection(const DiskPairInput<S>& in) {
+  using E = Eps<S>;
+  const auto args = solverArguments(in);
+  fcl_disk::DiskContact<S> contact;
+  const bool intersects =
+      fcl_disk::intersectDisks<S>(args.r1, args.X_W1, args.r2, args.X_W2, &contact);
+  const bool verdict_only = fcl_disk::intersectDisks<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const Vector3d pos = contact.pos.template cast<double>();
+  const Vector3d normal = contact.normal.template cast<double>();
+  const double depth = contact.penetration_depth;
+  const auto contactText = [&] {
+    return std::string("intersectDisks ") + (intersects ? "true" : "false") + ", contact pos " +
+           vectorText(pos) + ", normal " + vectorText(normal) + ", depth " + numberText(depth);
+  };
+  require(intersects == verdict_only, "intersection: asking for the contact keeps the verdict", in,
+          contactText);
+
+  if (in.anyNonFinite()) {
+    require(!intersects, "intersection: non-finite input gives false", in, contactText);
+    return;
+  }
+  if (!in.valid()) return;  // no crash is all that is promised
+
+  const Scales scale = scalesOf(in);
+  const auto exact = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const bool exact_says_intersecting = exact.distance <= 0;
+  // The touching band: test_tolerances.h (10x the exact solver's zero/non-zero
+  // resolution in double, 64 float ulps of the scene in float).
+  const double band = E::kIntersectionBandRelative * scale.scene;
+  if (intersects != exact_says_intersecting) {
+    require(exactVerdictFlipsWithin(in, exact, band),
+            "intersection: verdict == (exact distance == 0) outside the touching band", in, [&] {
+              return "exact distance " + numberText(exact.distance) + ", band " +
+                     numberText(band) + "; " + contactText();
+            });
+  }
+  if (!intersects) return;
+
+  const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
+  const double on_disk =
+      kBoundSafetyFactor * (E::kOnDiskRelative * std::max(scale.distance, pos.norm()) +
+                            storageRounding<S>({X_W1.translation(), X_W2.translation(), pos}));
+  require(offDisk(pos, args.r1, X_W1) <= on_disk, "intersection: contact pos lies on disk 1", in,
+          contactText);
+  require(offDisk(pos, args.r2, X_W2) <= on_disk, "intersection: contact pos lies on disk 2", in,
+          contactText);
+  require(std::abs(normal.norm() - 1.0) <= kBoundSafetyFactor * E::kUnitNormal,
+          "intersection: |normal| == 1", in, contactText);
+  require(std::isfinite(depth) && depth >= 0, "intersection: depth finite and >= 0", in,
+          contactText);
+
+  // The depth's meaning: one step past depth * normal the disks are apart, and
+  // no further apart than the translation (they shared a point, and the
+  // distance is 1-Lipschitz in translations).
+  const double step = E::kSeparationStepRelative * scale.scene;
+  fcl::Transform3<S> separated_X_W2 = in.X_W2;
+  separated_X_W2.translation() =
+      (X_W2.translation() + (depth + step) * normal.normalized()).template cast<S>();
+  require(!fcl_disk::intersectDisks<S>(args.r1, args.X_W1, args.r2, separated_X_W2),
+          "intersection: moving disk 2 by (depth + step) normal separates", in, contactText);
+  const auto after = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, separated_X_W2);
+  require(double(after.distance) <=
+              depth + step +
+                  kBoundSafetyFactor * (E::kExactDistanceRelative + E::kPoseRoundingRelative) *
+                      std::max(scale.scene, depth),
+          "intersection: ... and leaves them at distance <= depth + step", in, [&] {
+            return "distance after the move " + numberText(after.distance) + ", step " +
+                   numberText(step) + "; " + contactText();
+          });
+}
+
+}  // namespace
+}  // namespace fcl_disk_fuzz
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return fcl_disk_fuzz::forBothScalars(data, size, [](const auto& pair, fcl_disk_fuzz::ByteReader&) {
+    fcl_disk_fuzz::checkIntersection(pair);
+  });
+}

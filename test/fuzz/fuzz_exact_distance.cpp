@@ -1,0 +1,117 @@
+// libFuzzer target: fcl_disk::exactDiskDistance, double and float.
+//
+// Valid input (finite, radii > 0, orthonormal rotations, magnitudes below
+// kSafeMagnitude): a finite pair of points on the disks whose distance is the
+// returned one, certified within the bound exact_distance.h documents (by the
+// solver's own lower_bound, and by the certificate recomputed here), equal to
+// the closed-form distance where the mode knows it, and symmetric under
+// swapping the disks. Non-finite input: a NaN distance. Other invalid input
+// (non-orthonormal rotations, huge values): no crash, and NaN or finite >= 0.
+#include <fcl_disk/exact_distance.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "fuzz_checks.h"
+
+namespace fcl_disk_fuzz {
+namespace {
+
+template <typename S>
+void checkExactDistance(const DiskPairInput<S>& in) {
+  using E = Eps<S>;
+  const auto args = solverArguments(in);
+  const auto result = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const double d = result.distance;
+  const Vector3d p = result.p_W1.template cast<double>(), q = result.p_W2.template cast<double>();
+  const auto resultText = [&] {
+    return "distance " + numberText(d) + ", p_W1 " + vectorText(p) + ", p_W2 " + vectorText(q) +
+           ", lower_bound " + numberText(result.lower_bound) + ", iterations " +
+           std::to_string(result.iterations);
+  };
+
+  if (in.anyNonFinite()) {
+    require(std::isnan(d), "exact: non-finite input gives a NaN distance", in, resultText);
+    return;
+  }
+  if (!in.valid()) {
+    require(acceptableInvalidDistance(in, d),
+            "exact: invalid input gives NaN or a distance >= 0 (+inf only above kSafeMagnitude)", in,
+            resultText);
+    return;
+  }
+
+  const double r1 = args.r1, r2 = args.r2;
+  const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
+  const Scales scale = scalesOf(in);
+  require(std::isfinite(d) && d >= 0 && p.allFinite() && q.allFinite() &&
+              std::isfinite(double(result.lower_bound)),
+          "exact: valid input gives a finite distance >= 0 and finite points", in, resultText);
+
+  // Points on their disks: the distance bound plus the rounding of storing
+  // them in world coordinates (exact_distance.h).
+  const double on_disk = kBoundSafetyFactor * (E::kOnDiskRelative * scale.distance +
+                                               storageRounding<S>({X_W1.translation(), X_W2.translation(), p, q}));
+  require(offDisk(p, r1, X_W1) <= on_disk, "exact: p_W1 lies on disk 1", in, resultText);
+  require(offDisk(q, r2, X_W2) <= on_disk, "exact: p_W2 lies on disk 2", in, resultText);
+  require(std::abs((q - p).norm() - d) <=
+              kBoundSafetyFactor * (E::kExactDistanceRelative * scale.distance +
+                                    storageRounding<S>({p, q})),
+          "exact: |p_W2 - p_W1| == distance", in, resultText);
+
+  // The certificate, as exact_distance.h bounds it: 1e-14 scale when well
+  // conditioned, up to (r1 + r2)(sqrt(eps) scale + 8 eps scale^2 / d) next to
+  // degenerate configurations (eps of S: test_tolerances.h).
+  const double conditioning =
+      d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum * scale.distance +
+                           E::kCertificateSmallDistance * scale.distance * scale.distance / d)
+            : 0.0;
+  const double documented_gap = E::kCertifiedGapRelative * scale.distance + conditioning;
+  require(double(result.certifiedGap()) <= kBoundSafetyFactor * documented_gap,
+          "exact: certifiedGap() within the documented bound", in, resultText);
+  // The same certificate recomputed from the returned points: proves the
+  // distance optimal whatever the solver's lower_bound says. Extra terms: a
+  // float rotation is orthonormal only to rounding (kPoseRounding, twice: both
+  // disks), and rounding the returned points by e tilts the direction by up to
+  // 4e/d, against a Lipschitz constant |c2 - c1| + r1 + r2 of the bound.
+  if (d > 0) {
+    const double lower = independentLowerBound(r1, X_W1, r2, X_W2, p, q);
+    const double lipschitz = (X_W2.translation() - X_W1.translation()).norm() + r1 + r2;
+    const double direction_error = 4 * on_disk / d;
+    require(d - lower <= kBoundSafetyFactor * (documented_gap +
+                                               2 * E::kPoseRoundingRelative * scale.scene) +
+                             lipschitz * direction_error,
+            "exact: the recomputed certificate proves the distance", in,
+            [&] { return "recomputed lower bound " + numberText(lower) + "; " + resultText(); });
+  }
+
+  // Closed-form distance of the structured configuration. It was built in
+  // double and stored in S, which moves disk 2 by a few ulps of the scene.
+  if (in.known_distance) {
+    const double tolerance = kBoundSafetyFactor * (E::kExactDistanceRelative * scale.distance +
+                                                   E::kPoseRoundingRelative * scale.scene);
+    require(std::abs(d - *in.known_distance) <= tolerance,
+            "exact: distance equals the configuration's closed-form distance", in, [&] {
+              return "tolerance " + numberText(tolerance) + "; " + resultText();
+            });
+  }
+
+  // Swapping the disks: the same problem, so both answers are within the
+  // bound of the true distance.
+  const auto swapped = fcl_disk::exactDiskDistance<S>(args.r2, args.X_W2, args.r1, args.X_W1);
+  require(std::abs(double(swapped.distance) - d) <=
+              kBoundSafetyFactor * 2 * E::kExactDistanceRelative * scale.distance,
+          "exact: swapping the disks keeps the distance", in, [&] {
+            return "swapped distance " + numberText(swapped.distance) + "; " + resultText();
+          });
+}
+
+}  // namespace
+}  // namespace fcl_disk_fuzz
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return fcl_disk_fuzz::forBothScalars(data, size, [](const auto& pair, fcl_disk_fuzz::ByteReader&) {
+    fcl_disk_fuzz::checkExactDistance(pair);
+  });
+}
