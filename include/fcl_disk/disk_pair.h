@@ -42,9 +42,9 @@ struct DiskDistanceResult {
 /// in S (a few ulps, growing by about an ulp per composition: 1e-6 is ~1e10 double
 /// ulps and covers rotations built in float and widened to double; 1e-4 is ~1000
 /// float ulps), far below a deliberate scale or shear, which would turn the disk
-/// into an ellipse. An accepted rotation is used as given: its disk differs from
-/// a true one by at most defect * r, so distances may differ by
-/// defect * (r1 + r2) beyond the solvers' stated bounds.
+/// into an ellipse. An accepted rotation is used as given (R^T is used as its
+/// inverse), so distances may differ by about defect * (r1 + r2 + |c1 - c2|)
+/// beyond the solvers' stated bounds.
 template <typename S>
 constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) : S(1e-6);
 
