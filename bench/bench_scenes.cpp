@@ -395,10 +395,10 @@ PairCheck checkPairs(SceneKind scene, int n, Variant variant, const std::vector<
     if (margin <= band) {
       ++check.thickness_mismatches;
     } else if (check.unexplained++ == 0) {
-      check.first_unexplained = std::string(name(variant)) + (only_in_variant ? " adds" : " misses") +
-                                " pair (" + std::to_string(pair.first) + ", " +
-                                std::to_string(pair.second) + "), margin " +
-                                std::to_string(margin) + " m";
+      check.first_unexplained = std::string(name(variant)) +
+                                (only_in_variant ? " adds" : " misses") + " pair (" +
+                                std::to_string(pair.first) + ", " + std::to_string(pair.second) +
+                                "), margin " + std::to_string(margin) + " m";
     }
   };
   for (const Pair& pair : only_found) classify(pair, /*only_in_variant=*/true);

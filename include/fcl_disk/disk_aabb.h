@@ -104,7 +104,8 @@ class DiskCollisionObject : public fcl::CollisionObject<S> {
   const Disk<S>& disk() const { return *disk_; }
 
  private:
-  static std::shared_ptr<fcl::CollisionGeometry<S>> checkedDisk(const std::shared_ptr<Disk<S>>& disk) {
+  static std::shared_ptr<fcl::CollisionGeometry<S>> checkedDisk(
+      const std::shared_ptr<Disk<S>>& disk) {
     if (!disk) throw std::invalid_argument("fcl_disk::DiskCollisionObject: disk is null");
     return disk;
   }
