@@ -3,8 +3,9 @@
 // The 1994 algorithm is not exact (almohamad_selim.h), so the invariants are
 // what its header promises: a real pair of points on the disks with distance
 // |p_W2 - p_W1|, hence an upper bound on the exact distance, and a lower_bound
-// that is a sound certificate. Non-finite input: NaN distance, lower_bound and
-// points. Other invalid input: no crash, and NaN or a finite distance >= 0.
+// that is a sound certificate. Input describing no disk pair (invalid radius,
+// NaN/inf, rotation beyond the defect tolerance): NaN distance, lower_bound and
+// points.
 #include <fcl_disk/almohamad_selim.h>
 #include <fcl_disk/exact_distance.h>
 
@@ -20,9 +21,7 @@ namespace {
 template <typename S>
 void checkAlmohamadSelim(const DiskPairInput<S>& in) {
   using E = Eps<S>;
-  const auto args = solverArguments(in);
-  const auto report =
-      fcl_disk::almohamadSelimDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const auto report = fcl_disk::almohamadSelimDiskDistance<S>(in.r1, in.X_W1, in.r2, in.X_W2);
   const double d = report.distance;
   const Vector3d p = report.p_W1.template cast<double>(), q = report.p_W2.template cast<double>();
   const auto reportText = [&] {
@@ -30,31 +29,35 @@ void checkAlmohamadSelim(const DiskPairInput<S>& in) {
            vectorText(q) + ", lower_bound " + numberText(report.lower_bound);
   };
 
-  if (in.anyNonFinite()) {
-    require(std::isnan(d) && std::isnan(double(report.lower_bound)) &&
-                p.array().isNaN().all() && q.array().isNaN().all(),
-            "Almohamad-Selim: non-finite input gives NaN distance, lower_bound and points", in,
-            reportText);
-    return;
-  }
-  if (!in.valid()) {
-    require(acceptableInvalidDistance(in, d),
-            "Almohamad-Selim: invalid input gives NaN or a distance >= 0 (+inf only above kSafeMagnitude)", in,
-            reportText);
-    return;
+  switch (verdictOf(in)) {
+    case Verdict::no_disk_pair:
+      require(allNaN(report), "Almohamad-Selim: input describing no disk pair gives NaN "
+              "distance, lower_bound and points", in, reportText);
+      return;
+    case Verdict::borderline:
+      require(std::isnan(d) || d >= 0, "Almohamad-Selim: NaN or a distance >= 0", in, reportText);
+      return;
+    case Verdict::accepted:
+      if (!in.withinSafeMagnitude()) {
+        require(acceptableOverflowDistance(d),
+                "Almohamad-Selim: outside the safe magnitudes, NaN or a distance >= 0", in, reportText);
+        return;
+      }
+      break;
   }
 
-  const double r1 = args.r1, r2 = args.r2;
+  const double r1 = in.r1, r2 = in.r2;
   const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
   const Scales scale = scalesOf(in);
   require(std::isfinite(d) && d >= 0 && p.allFinite() && q.allFinite(),
-          "Almohamad-Selim: valid input gives a finite distance >= 0 and finite points", in,
+          "Almohamad-Selim: a disk pair gets a finite distance >= 0 and finite points", in,
           reportText);
 
   // Closed forms, no iteration: only rounding (test_tolerances.h), plus
-  // storing the points in world coordinates.
+  // storing the points in world coordinates and an accepted rotation's defect.
   const double consistency =
       kBoundSafetyFactor * (E::kAlmohamadSelimConsistencyRelative * scale.distance +
+                            defectCost(in) +
                             storageRounding<S>({X_W1.translation(), X_W2.translation(), p, q}));
   require(offDisk(p, r1, X_W1) <= consistency, "Almohamad-Selim: p_W1 lies on disk 1", in,
           reportText);
@@ -64,10 +67,12 @@ void checkAlmohamadSelim(const DiskPairInput<S>& in) {
           "Almohamad-Selim: |p_W2 - p_W1| == distance", in, reportText);
 
   // A real pair bounds the distance from above; the certificate from below.
-  const auto exact = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const auto exact = fcl_disk::exactDiskDistance<S>(in.r1, in.X_W1, in.r2, in.X_W2);
   const double both_solvers =
       consistency + kBoundSafetyFactor * E::kExactDistanceRelative * scale.distance;
-  const auto withExact = [&] { return "exact distance " + numberText(exact.distance) + "; " + reportText(); };
+  const auto withExact = [&] {
+    return "exact distance " + numberText(exact.distance) + "; " + reportText();
+  };
   require(double(exact.distance) - d <= both_solvers,
           "Almohamad-Selim: distance >= exact distance (an upper bound)", in, withExact);
   require(double(report.lower_bound) - double(exact.distance) <= both_solvers,

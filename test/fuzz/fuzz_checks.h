@@ -46,6 +46,13 @@ const char* scalarName() {
 // ----------------------------------------------------------------------------
 // Describing inputs and reporting violations.
 
+/// max_ij |(R^T R - I)_ij|, evaluated in double (only for finite R).
+template <typename S>
+double rotationDefect(const fcl::Transform3<S>& X) {
+  const Eigen::Matrix3d R = X.linear().template cast<double>();
+  return (R.transpose() * R - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+}
+
 inline std::string numberText(double x) {
   char buffer[40];
   std::snprintf(buffer, sizeof buffer, "%.17g", x);
@@ -73,7 +80,11 @@ std::string describe(const DiskPairInput<S>& in) {
                     ": r1 = " + numberText(in.r1) + ", X_W1: " + poseText(in.X_W1) +
                     "; r2 = " + numberText(in.r2) + ", X_W2: " + poseText(in.X_W2);
   if (in.known_distance) out += "; known distance " + numberText(*in.known_distance);
-  if (!in.rotations_orthonormal) out += "; rotations not orthonormal by construction";
+  if (!in.rotations_orthonormal && in.posesFinite()) {
+    const double defect = std::max(rotationDefect(in.X_W1), rotationDefect(in.X_W2));
+    out += "; rotation defect " + numberText(defect) + " (tolerance " +
+           numberText(fcl_disk::kRotationDefectTolerance<S>) + ")";
+  }
   return out;
 }
 
@@ -140,14 +151,15 @@ inline double independentLowerBound(double r1, const Pose3d& X_W1, double r2, co
 
 /// The lengths the documented bounds scale with, for one input.
 struct Scales {
-  /// max(1, r1 + r2 + |c1 - c2|): the scale of the double guarantees
-  /// (exact_distance.h: far from the origin costs no accuracy in distance).
+  /// r1 + r2 + |c1 - c2|: the scale of the double guarantees, relative at
+  /// every length scale (exact_distance.h; far from the origin costs nothing).
   double pair;
-  /// max(pair, |c1|, |c2|): where the rounding of world coordinates enters
-  /// (test_tolerances.h sceneSize()).
+  /// max(pair, |c1|, |c2|) (float: and 1): where the rounding of world
+  /// coordinates enters (storing points, building and rounding poses).
   double scene;
-  /// The scale of S's distance guarantee: pair in double; scene in float, whose
-  /// documented bound is "a few float ulps of max(1, r1 + r2 + |c1 - c2|, |c_i|)".
+  /// The scale of S's distance guarantee: pair in double; in float, whose
+  /// documented bound is "a few float ulps of max(1, r1 + r2 + |c1 - c2|,
+  /// |c_i|)", the scene.
   double distance;
 };
 
@@ -155,10 +167,10 @@ template <typename S>
 Scales scalesOf(const DiskPairInput<S>& in) {
   const Vector3d c1 = in.X_W1.translation().template cast<double>();
   const Vector3d c2 = in.X_W2.translation().template cast<double>();
-  const double r1 = in.solverR1(), r2 = in.solverR2();
   Scales scales;
-  scales.pair = std::max(1.0, r1 + r2 + (c2 - c1).norm());
-  scales.scene = fcl_disk_test::sceneSize(r1, r2, (c2 - c1).norm(), c1.norm(), c2.norm());
+  scales.pair = double(in.r1) + double(in.r2) + (c2 - c1).norm();
+  scales.scene = std::max({scales.pair, c1.norm(), c2.norm()});
+  if (kIsFloat<S>) scales.scene = std::max(1.0, scales.scene);
   scales.distance = kIsFloat<S> ? scales.scene : scales.pair;
   return scales;
 }
@@ -171,27 +183,75 @@ double storageRounding(std::initializer_list<Vector3d> points) {
   return kStorageUlps * double(std::numeric_limits<S>::epsilon()) * largest;
 }
 
-/// Whether `d` is an acceptable distance for finite input outside the
-/// preconditions (non-orthonormal rotations, magnitudes above kSafeMagnitude):
-/// NaN (the policy for rotations that are not orthonormal) or >= 0; +inf only
-/// above kSafeMagnitude, where the true distance may itself overflow.
+// ----------------------------------------------------------------------------
+// The bad-input policy (disk_pair.h, isValidDiskPose): a radius that is not
+// finite and > 0, a non-finite pose entry, or a rotation further than
+// kRotationDefectTolerance<S> from orthonormal describes no disk pair and gets
+// NaN distance, lower_bound and points and no contact; a rotation within the
+// tolerance is used as given, at a cost of defect * (r1 + r2) in distance.
+
+/// The larger rotation defect of the two poses: ~1e-16 for our constructed
+/// rotations, up to the tolerance for raw perturbed ones.
 template <typename S>
-bool acceptableInvalidDistance(const DiskPairInput<S>& in, double d) {
-  if (std::isnan(d)) return true;
-  return d >= 0 && (std::isfinite(d) || !in.withinSafeMagnitude());
+double maxDefect(const DiskPairInput<S>& in) {
+  return std::max(rotationDefect(in.X_W1), rotationDefect(in.X_W2));
 }
 
-/// The two disks as standalone-solver arguments (radii as the solvers get them).
-template <typename S>
-struct SolverArguments {
-  S r1, r2;
-  const fcl::Transform3<S>& X_W1;
-  const fcl::Transform3<S>& X_W2;
+/// The library evaluates the defect in S, we in double: within this fraction of
+/// the tolerance either verdict is acceptable (float R^T R rounds by ~1e-7,
+/// 1/1000 of its 1e-4 tolerance; double by ~1e-16).
+constexpr double kPolicyMargin = 0.01;
+
+enum class Verdict {
+  no_disk_pair,  ///< must get NaN everywhere and no contact.
+  borderline,    ///< rotation defect within kPolicyMargin of the tolerance: either.
+  accepted,      ///< a disk pair: answered.
 };
 
 template <typename S>
-SolverArguments<S> solverArguments(const DiskPairInput<S>& in) {
-  return {in.solverR1(), in.solverR2(), in.X_W1, in.X_W2};
+Verdict verdictOf(const DiskPairInput<S>& in) {
+  if (!in.radiiValid() || !in.posesFinite()) return Verdict::no_disk_pair;
+  const double defect = maxDefect(in);
+  const double tolerance = fcl_disk::kRotationDefectTolerance<S>;
+  if (!(defect <= (1 + kPolicyMargin) * tolerance)) return Verdict::no_disk_pair;  // also overflow
+  if (defect >= (1 - kPolicyMargin) * tolerance) return Verdict::borderline;
+  return Verdict::accepted;
+}
+
+/// Accepted, and inside the magnitudes where every guarantee applies
+/// (kSafeMagnitude, kMinSafeScale).
+template <typename S>
+bool fullyChecked(const DiskPairInput<S>& in) {
+  return verdictOf(in) == Verdict::accepted && in.withinSafeMagnitude();
+}
+
+/// Spectral norm of a symmetric 3x3 matrix per unit of its largest entry
+/// (norm <= Frobenius norm <= 3 max |entry|): turns the defect, an entry
+/// bound of R^T R - I, into a bound on how far R R^T moves a vector.
+constexpr double kDefectNormFactor = 3.0;
+
+/// What an accepted rotation's defect may cost in distance and in points,
+/// beyond the solvers' bounds. disk_pair.h states defect * (r1 + r2), the
+/// deformation of each disk; but the solvers map disk 2 into disk 1's frame
+/// with R_W1^T as the inverse and back with R_W1, which moves it by
+/// (R_W1 R_W1^T - I)(c2 - c1): up to 3 defect |c1 - c2| more (found by this
+/// fuzzer: corpus/*/regression-defect-times-centre-distance, docs/fuzzing.md).
+/// So the cost checked is 3 defect (r1 + r2 + |c1 - c2|).
+template <typename S>
+double defectCost(const DiskPairInput<S>& in) {
+  const Vector3d c1 = in.X_W1.translation().template cast<double>();
+  const Vector3d c2 = in.X_W2.translation().template cast<double>();
+  return kDefectNormFactor * maxDefect(in) * (double(in.r1) + double(in.r2) + (c2 - c1).norm());
+}
+
+/// Whether `d` is acceptable for an accepted input outside the safe magnitudes,
+/// where sums and squares overflow or underflow: NaN, or >= 0 (+inf included).
+inline bool acceptableOverflowDistance(double d) { return std::isnan(d) || d >= 0; }
+
+template <typename S>
+bool allNaN(const fcl_disk::DiskDistanceResult<S>& r) {
+  return std::isnan(r.distance) && std::isnan(r.lower_bound) && r.p_W1.array().isNaN().all() &&
+         r.p_W2.array().isNaN().all();
 }
 
 /// FCL_DISK_FUZZ_PRINT=1 in the environment prints every decoded input (to

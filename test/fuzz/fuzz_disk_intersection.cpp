@@ -6,9 +6,8 @@
 // on both disks, the normal is unit, the depth finite and >= 0, and translating
 // disk 2 by (depth + a small step) along the normal separates the disks and
 // leaves them no further apart than that translation (disk_intersection.h).
-// Asking for the contact does not change the verdict. Non-finite input: false
-// (the header: "Returns false ... when the input is NaN"). Other invalid input:
-// no crash.
+// Asking for the contact does not change the verdict. Input describing no disk
+// pair (invalid radius, NaN/inf, rotation beyond the defect tolerance): false.
 #include <fcl_disk/disk_intersection.h>
 #include <fcl_disk/exact_distance.h>
 
@@ -29,7 +28,6 @@ namespace {
 template <typename S>
 bool exactVerdictFlipsWithin(const DiskPairInput<S>& in,
                              const fcl_disk::DiskDistanceResult<S>& exact, double band) {
-  const auto args = solverArguments(in);
   const bool verdict_intersecting = exact.distance <= 0;
   const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
   const Vector3d n1 = X_W1.linear().col(2), n2 = X_W2.linear().col(2);
@@ -44,7 +42,7 @@ bool exactVerdictFlipsWithin(const DiskPairInput<S>& in,
     for (const double sign : {1.0, -1.0}) {
       fcl::Transform3<S> moved_X_W2 = in.X_W2;
       moved_X_W2.translation() = (X_W2.translation() + sign * band * direction).template cast<S>();
-      const auto moved = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, moved_X_W2);
+      const auto moved = fcl_disk::exactDiskDistance<S>(in.r1, in.X_W1, in.r2, moved_X_W2);
       if ((moved.distance <= 0) != verdict_intersecting) return true;
     }
   }
@@ -54,11 +52,9 @@ bool exactVerdictFlipsWithin(const DiskPairInput<S>& in,
 template <typename S>
 void checkIntersection(const DiskPairInput<S>& in) {
   using E = Eps<S>;
-  const auto args = solverArguments(in);
   fcl_disk::DiskContact<S> contact;
-  const bool intersects =
-      fcl_disk::intersectDisks<S>(args.r1, args.X_W1, args.r2, args.X_W2, &contact);
-  const bool verdict_only = fcl_disk::intersectDisks<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const bool intersects = fcl_disk::intersectDisks<S>(in.r1, in.X_W1, in.r2, in.X_W2, &contact);
+  const bool verdict_only = fcl_disk::intersectDisks<S>(in.r1, in.X_W1, in.r2, in.X_W2);
   const Vector3d pos = contact.pos.template cast<double>();
   const Vector3d normal = contact.normal.template cast<double>();
   const double depth = contact.penetration_depth;
@@ -69,18 +65,24 @@ void checkIntersection(const DiskPairInput<S>& in) {
   require(intersects == verdict_only, "intersection: asking for the contact keeps the verdict", in,
           contactText);
 
-  if (in.anyNonFinite()) {
-    require(!intersects, "intersection: non-finite input gives false", in, contactText);
+  if (verdictOf(in) == Verdict::no_disk_pair) {
+    require(!intersects, "intersection: input describing no disk pair gives false", in,
+            contactText);
     return;
   }
-  if (!in.valid()) return;  // no crash is all that is promised
+  if (!fullyChecked(in)) return;  // borderline defect or huge: no crash is all that is promised
 
   const Scales scale = scalesOf(in);
-  const auto exact = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, args.X_W2);
+  const auto exact = fcl_disk::exactDiskDistance<S>(in.r1, in.X_W1, in.r2, in.X_W2);
   const bool exact_says_intersecting = exact.distance <= 0;
   // The touching band: test_tolerances.h (10x the exact solver's zero/non-zero
-  // resolution in double, 64 float ulps of the scene in float).
-  const double band = E::kIntersectionBandRelative * scale.scene;
+  // resolution in double, 64 float ulps of the scene in float), at least a few
+  // ulps of the coordinates (a smaller move of disk 2 would not be
+  // representable), plus an accepted rotation's defect.
+  const double band =
+      E::kIntersectionBandRelative * scale.distance + defectCost(in) +
+      storageRounding<S>({in.X_W1.translation().template cast<double>(),
+                          in.X_W2.translation().template cast<double>()});
   if (intersects != exact_says_intersecting) {
     require(exactVerdictFlipsWithin(in, exact, band),
             "intersection: verdict == (exact distance == 0) outside the touching band", in, [&] {
@@ -92,31 +94,35 @@ void checkIntersection(const DiskPairInput<S>& in) {
 
   const Pose3d X_W1 = toDouble(in.X_W1), X_W2 = toDouble(in.X_W2);
   const double on_disk =
-      kBoundSafetyFactor * (E::kOnDiskRelative * std::max(scale.distance, pos.norm()) +
+      kBoundSafetyFactor * (E::kOnDiskRelative * scale.distance + defectCost(in) +
                             storageRounding<S>({X_W1.translation(), X_W2.translation(), pos}));
-  require(offDisk(pos, args.r1, X_W1) <= on_disk, "intersection: contact pos lies on disk 1", in,
+  require(offDisk(pos, in.r1, X_W1) <= on_disk, "intersection: contact pos lies on disk 1", in,
           contactText);
-  require(offDisk(pos, args.r2, X_W2) <= on_disk, "intersection: contact pos lies on disk 2", in,
+  require(offDisk(pos, in.r2, X_W2) <= on_disk, "intersection: contact pos lies on disk 2", in,
           contactText);
-  require(std::abs(normal.norm() - 1.0) <= kBoundSafetyFactor * E::kUnitNormal,
+  // The normal may be a column of an input rotation: unit to its defect.
+  require(std::abs(normal.norm() - 1.0) <= kBoundSafetyFactor * (E::kUnitNormal + maxDefect(in)),
           "intersection: |normal| == 1", in, contactText);
   require(std::isfinite(depth) && depth >= 0, "intersection: depth finite and >= 0", in,
           contactText);
 
   // The depth's meaning: one step past depth * normal the disks are apart, and
   // no further apart than the translation (they shared a point, and the
-  // distance is 1-Lipschitz in translations).
-  const double step = E::kSeparationStepRelative * scale.scene;
+  // distance is 1-Lipschitz in translations). The step is test_tolerances.h's
+  // (100x the band: decided robustly, yet small).
+  const double step = E::kSeparationStepRelative / E::kIntersectionBandRelative * band;
   fcl::Transform3<S> separated_X_W2 = in.X_W2;
   separated_X_W2.translation() =
       (X_W2.translation() + (depth + step) * normal.normalized()).template cast<S>();
-  require(!fcl_disk::intersectDisks<S>(args.r1, args.X_W1, args.r2, separated_X_W2),
+  require(!fcl_disk::intersectDisks<S>(in.r1, in.X_W1, in.r2, separated_X_W2),
           "intersection: moving disk 2 by (depth + step) normal separates", in, contactText);
-  const auto after = fcl_disk::exactDiskDistance<S>(args.r1, args.X_W1, args.r2, separated_X_W2);
+  const auto after = fcl_disk::exactDiskDistance<S>(in.r1, in.X_W1, in.r2, separated_X_W2);
   require(double(after.distance) <=
               depth + step +
-                  kBoundSafetyFactor * (E::kExactDistanceRelative + E::kPoseRoundingRelative) *
-                      std::max(scale.scene, depth),
+                  kBoundSafetyFactor *
+                      ((E::kExactDistanceRelative + E::kPoseRoundingRelative) *
+                           std::max(scale.scene, depth) +
+                       defectCost(in)),
           "intersection: ... and leaves them at distance <= depth + step", in, [&] {
             return "distance after the move " + numberText(after.distance) + ", step " +
                    numberText(step) + "; " + contactText();

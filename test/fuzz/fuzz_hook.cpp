@@ -4,14 +4,15 @@
 // For two fcl::CollisionObject with Disk geometries, with both
 // DistanceRequest::gjk_solver_type values and the selected method:
 // - fcl::distance gives bit for bit the selected standalone solver's distance
-//   and nearest points (valid input);
-// - fcl::collide gives bit for bit intersectDisks()'s verdict and contact;
+//   and nearest points, and result.min_distance NaN where the solver gives NaN
+//   (every input describing no disk pair: NaN/inf poses, rotations beyond the
+//   defect tolerance);
+// - fcl::collide gives bit for bit intersectDisks()'s verdict and contact, and
+//   no contact for input describing no disk pair;
 // - a DynamicAABBTreeCollisionManager over a chain of disks gives the least
 //   pair distance and a collision exactly when some pair collides;
 // - Disk's constructor throws std::invalid_argument exactly for a radius that
-//   is not finite and > 0;
-// - non-finite poses: no contact, and a NaN distance (result.min_distance NaN:
-//   enabled by FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN, see below).
+//   is not finite and > 0.
 // Option byte after the pair: bit 0 selects DiskDistanceMethod::almohamad_selim,
 // bit 1 enable_signed_distance, bits 2-3 the number of extra disks (0-2) in the
 // broadphase chain.
@@ -31,14 +32,14 @@
 
 #include "fuzz_checks.h"
 
-/// A NaN or infinite pose must reach the caller as result.min_distance = NaN.
-/// FCL's DistanceResult::update() skips a NaN (`min_distance > NaN` is false),
-/// so today min_distance stays at numeric_limits::max(); the fix is under way
-/// in src/fcl_hook.cpp. Until it lands (0) either NaN or max() is accepted;
-/// build with -DFCL_DISK_FUZZ_HOOK_PROPAGATES_NAN=1 (CMake option
-/// FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN) to require NaN.
+/// A NaN answer must reach the caller as result.min_distance = NaN. FCL's
+/// DistanceResult::update() skips a NaN (`min_distance > NaN` is false), so
+/// before src/fcl_hook.cpp wrote it directly (commit 08042c3) min_distance
+/// stayed at numeric_limits::max(). 1 (the default) requires NaN; 0 also
+/// accepts max(), for fuzzing an fcl_disk older than that fix (CMake option
+/// FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN).
 #ifndef FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN
-#define FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN 0
+#define FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN 1
 #endif
 
 namespace fcl_disk_fuzz {
@@ -88,26 +89,29 @@ void checkDistance(const DiskPairInput<S>& in, DiskDistanceMethod method, bool s
              "; solver distance " + numberText(expected.distance) + ", points " +
              vectorText(expected.p_W1) + ", " + vectorText(expected.p_W2);
     };
-    const bool left_at_max = got == std::numeric_limits<S>::max();  // update() skipped the answer
-    if (in.anyNonFinite()) {
+    const bool left_at_max = got == std::numeric_limits<S>::max();  // update() skipped a NaN
+    if (std::isnan(expected.distance) || verdictOf(in) == Verdict::no_disk_pair) {
+      // NaN bits may differ (the hook writes its own NaN): compared as NaN.
       require(std::isnan(got) || (!FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN && left_at_max),
-              "hook: a non-finite pose gives min_distance NaN", in, resultText);
-    } else if (in.valid()) {
-      require(sameBits(got, expected.distance) && sameBits(returned, expected.distance),
-              "hook: fcl::distance == the selected solver's distance, bit for bit", in,
+              "hook: a pair the solver answers with NaN gives min_distance NaN", in,
               resultText);
-      require(sameBits(result.nearest_points[0], expected.p_W1) &&
-                  sameBits(result.nearest_points[1], expected.p_W2),
-              "hook: nearest points == the selected solver's points, bit for bit", in,
-              resultText);
-      require(result.o1 == &disk1 && result.o2 == &disk2,
-              "hook: result.o1, o2 are the two disks, in order", in, resultText);
-    } else {
-      // Non-orthonormal or huge: the policy being implemented may give NaN.
-      require(acceptableInvalidDistance(in, got) ||
-                  (!FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN && left_at_max),
-              "hook: invalid input gives NaN or a distance >= 0", in, resultText);
+      continue;
     }
+    if (!(expected.distance < std::numeric_limits<S>::max())) {
+      // Overflow (outside the safe magnitudes): update() records only
+      // distances below its initial max(), so +inf and max() leave it as is.
+      require(got == expected.distance || left_at_max,
+              "hook: a solver's overflowed distance gives the same or max()", in, resultText);
+      continue;
+    }
+    require(sameBits(got, expected.distance) && sameBits(returned, expected.distance),
+            "hook: fcl::distance == the selected solver's distance, bit for bit", in,
+            resultText);
+    require(sameBits(result.nearest_points[0], expected.p_W1) &&
+                sameBits(result.nearest_points[1], expected.p_W2),
+            "hook: nearest points == the selected solver's points, bit for bit", in, resultText);
+    require(result.o1 == &disk1 && result.o2 == &disk2,
+            "hook: result.o1, o2 are the two disks, in order", in, resultText);
   }
 }
 
@@ -132,12 +136,10 @@ void checkCollision(const DiskPairInput<S>& in, const Disk<S>& disk1, const Disk
       }
       return text;
     };
-    if (in.anyNonFinite()) {
-      require(result.numContacts() == 0, "hook: a non-finite pose gives no contact", in,
-              resultText);
-      continue;
+    if (verdictOf(in) == Verdict::no_disk_pair) {
+      require(result.numContacts() == 0, "hook: a pair describing no disk pair gives no contact",
+              in, resultText);
     }
-    if (!in.valid()) continue;  // the non-orthonormal policy is being implemented
     require(result.numContacts() == (intersects ? 1u : 0u),
             "hook: fcl::collide == intersectDisks()", in, resultText);
     if (!intersects) continue;
@@ -244,7 +246,8 @@ void checkHook(const DiskPairInput<S>& in, ByteReader& options) {
   const fcl::CollisionObject<S> o1(disk1, in.X_W1), o2(disk2, in.X_W2);
   checkDistance(in, method, signed_distance, *disk1, *disk2, o1, o2);
   checkCollision(in, *disk1, *disk2, o1, o2);
-  if (in.valid()) checkBroadphase(in, method, extra_disks);
+  // The chain composes the rotations: only for our constructed (orthonormal) ones.
+  if (fullyChecked(in) && in.rotations_orthonormal) checkBroadphase(in, method, extra_disks);
 }
 
 }  // namespace

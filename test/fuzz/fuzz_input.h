@@ -89,19 +89,23 @@ constexpr double kMinMagnitude = 1e-9;
 constexpr double kMaxMagnitude = 1e9;
 
 /// Beyond this, sums and squares inside the solvers overflow (|c|^2 at ~1e154 in
-/// double; results cast to float at ~3e38), so a NaN answer is acceptable for
+/// double; results cast to float at ~3e38), so NaN or +inf is acceptable for
 /// finite input; below it every guarantee applies.
 template <typename S>
 constexpr double kSafeMagnitude = std::is_same<S, float>::value ? 1e37 : 1e150;
 
-/// What the standalone solvers get instead of an invalid raw radius: their
-/// precondition is r > 0 and finite, and the brief is to fuzz poses there.
-constexpr double kFallbackRadius = 1.0;
+/// Below this scene size (r1 + r2 + |c1 - c2|) squares underflow into
+/// denormals and zero (double: (1e-160)^2 = 1e-320), so relative accuracy
+/// cannot hold (found: two 5e-324 disks 1e-323 apart get distance 0). Float
+/// input is computed in double, where float's smallest scales still square
+/// safely.
+template <typename S>
+constexpr double kMinSafeScale = std::is_same<S, float>::value ? 0.0 : 1e-150;
 
 template <typename S>
 struct DiskPairInput {
   Mode mode{Mode::generic};
-  S r1{1}, r2{1};  ///< as decoded: in raw mode possibly NaN, infinite, <= 0.
+  S r1{1}, r2{1};  ///< in raw mode possibly NaN, infinite, <= 0.
   fcl::Transform3<S> X_W1{fcl::Transform3<S>::Identity()};
   fcl::Transform3<S> X_W2{fcl::Transform3<S>::Identity()};
   /// Both rotations built as rotations (quaternions, signed permutations):
@@ -113,27 +117,19 @@ struct DiskPairInput {
 
   static bool radiusValid(S r) { return std::isfinite(r) && r > S(0); }
   bool radiiValid() const { return radiusValid(r1) && radiusValid(r2); }
-  /// The radii the standalone solvers are called with (their precondition).
-  S solverR1() const { return radiusValid(r1) ? r1 : S(kFallbackRadius); }
-  S solverR2() const { return radiusValid(r2) ? r2 : S(kFallbackRadius); }
+  bool posesFinite() const { return X_W1.matrix().allFinite() && X_W2.matrix().allFinite(); }
 
-  /// A NaN or infinity in what the solvers see (solver radii and both poses).
-  bool anyNonFinite() const {
-    return !(std::isfinite(solverR1()) && std::isfinite(solverR2()) && X_W1.matrix().allFinite() &&
-             X_W2.matrix().allFinite());
-  }
-
-  /// Every radius and pose entry within kSafeMagnitude.
+  /// Every radius and pose entry within kSafeMagnitude, and the scene size
+  /// r1 + r2 + |c1 - c2| at least kMinSafeScale.
   bool withinSafeMagnitude() const {
     const double limit = kSafeMagnitude<S>;
+    const double scale = double(r1) + double(r2) +
+                         (X_W2.translation().template cast<double>() -
+                          X_W1.translation().template cast<double>()).norm();
     return std::abs(double(r1)) <= limit && std::abs(double(r2)) <= limit &&
            X_W1.matrix().template cast<double>().cwiseAbs().maxCoeff() <= limit &&
-           X_W2.matrix().template cast<double>().cwiseAbs().maxCoeff() <= limit;
-  }
-
-  /// Inside every precondition: the solvers' guarantees apply in full.
-  bool valid() const {
-    return radiiValid() && !anyNonFinite() && rotations_orthonormal && withinSafeMagnitude();
+           X_W2.matrix().template cast<double>().cwiseAbs().maxCoeff() <= limit &&
+           scale >= kMinSafeScale<S>;
   }
 };
 
