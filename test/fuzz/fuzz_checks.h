@@ -231,12 +231,12 @@ bool fullyChecked(const DiskPairInput<S>& in) {
 constexpr double kDefectNormFactor = 3.0;
 
 /// What an accepted rotation's defect may cost in distance and in points,
-/// beyond the solvers' bounds. disk_pair.h states defect * (r1 + r2), the
-/// deformation of each disk; but the solvers map disk 2 into disk 1's frame
-/// with R_W1^T as the inverse and back with R_W1, which moves it by
-/// (R_W1 R_W1^T - I)(c2 - c1): up to 3 defect |c1 - c2| more (found by this
-/// fuzzer: corpus/*/regression-defect-times-centre-distance, docs/fuzzing.md).
-/// So the cost checked is 3 defect (r1 + r2 + |c1 - c2|).
+/// beyond the solvers' bounds: disk_pair.h, "about defect * (r1 + r2 +
+/// |c1 - c2|)" (R^T is used as the inverse, so disk 2 mapped into disk 1's
+/// frame and back moves by (R_W1 R_W1^T - I)(c2 - c1); an earlier statement,
+/// defect * (r1 + r2), was refuted by this fuzzer:
+/// corpus/*/regression-defect-times-centre-distance). "About": the defect
+/// bounds entries, kDefectNormFactor turns it into a norm.
 template <typename S>
 double defectCost(const DiskPairInput<S>& in) {
   const Vector3d c1 = in.X_W1.translation().template cast<double>();

@@ -169,8 +169,16 @@ void checkBroadphase(const DiskPairInput<S>& in, DiskDistanceMethod method, int 
     poses.push_back(X_WLast.template cast<S>());
     radii.push_back(radii[radii.size() - 2]);
   }
-  for (const auto& X : poses)
-    if (!X.matrix().allFinite()) return;  // the chain left the representable range
+  // FCL's broadphase squares coordinate differences in S (AABB distances):
+  // past sqrt(max()) / 4 they overflow to inf and prune pairs wrongly (found
+  // for float at 1.6e19: corpus/fuzz_hook/regression-float-broadphase-overflow),
+  // which is FCL's limit, not fcl_disk's.
+  const double broadphase_limit = std::sqrt(double(std::numeric_limits<S>::max())) / 4;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    if (!(poses[i].translation().template cast<double>().cwiseAbs().maxCoeff() +
+              double(radii[i]) <= broadphase_limit))
+      return;
+  }
 
   std::vector<std::shared_ptr<Disk<S>>> disks;
   std::vector<std::unique_ptr<fcl::CollisionObject<S>>> objects;
