@@ -70,11 +70,16 @@ void checkExactDistance(const DiskPairInput<S>& in) {
           "exact: |p_W2 - p_W1| == distance", in, resultText);
 
   // The certificate, as exact_distance.h bounds it: 1e-14 scale when well
-  // conditioned, up to (r1 + r2)(sqrt(eps) scale + 8 eps scale^2 / d) next to
-  // degenerate configurations (eps of S: test_tolerances.h).
+  // conditioned, and next to degenerate configurations the Lipschitz constant
+  // r1 + r2 of g at its kinks times the error of its direction, sqrt(eps) or
+  // eps scale / d: (r1 + r2)(sqrt(eps) + 8 eps scale / d), eps of S
+  // (test_tolerances.h). The header writes (r1 + r2)(sqrt(eps) scale +
+  // 8 eps scale^2 / d), a length squared: the same at scale 1 (its old floor),
+  // 1e5x too small at scale 1e-5, where this fuzzer found a correct answer
+  // outside it (corpus/fuzz_exact_distance/regression-certificate-small-scale).
   const double conditioning =
-      d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum * scale.distance +
-                           E::kCertificateSmallDistance * scale.distance * scale.distance / d)
+      d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum +
+                           E::kCertificateSmallDistance * scale.distance / d)
             : 0.0;
   const double documented_gap = E::kCertifiedGapRelative * scale.distance + conditioning;
   require(double(result.certifiedGap()) <= kBoundSafetyFactor * (documented_gap + defect_cost),
