@@ -33,7 +33,7 @@ namespace fcl_disk {
 /// certificate is an honest but pessimistic error bar: its direction is known
 /// only to about eps * scale / d (tiny d) or sqrt(eps) (flat optima next to a
 /// face case of nearly parallel disks), and g is only Lipschitz at its kinks, so
-/// the gap may reach about (r1 + r2) (sqrt(eps) scale + 8 eps scale^2 / d) while
+/// the gap may reach about (r1 + r2) (sqrt(eps) + 8 eps scale / d) while
 /// the distance still meets the bound above (eps of the scalar type).
 /// Float: inputs are promoted to double, results rounded to float, so the bound
 /// is a few float ulps of max(1, r1 + r2 + |c1 - c2|, |c_i|).
