@@ -13,7 +13,7 @@ set -euo pipefail
 
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 ROOT=$PWD
-JOBS=$(nproc)
+JOBS=${FCL_DISK_SANITIZE_JOBS:-$(nproc)}
 
 stages=("$@")
 [ "${#stages[@]}" -eq 0 ] && stages=(asan tsan)
@@ -43,7 +43,7 @@ run_asan() {
   export CXXFLAGS="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   export LDFLAGS="-fsanitize=address,undefined"
   timed "asan: configure" cmake -S . -B build-asan \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_BUILD_TYPE=Debug \
     -DCMAKE_CXX_COMPILER=g++ \
     -DCMAKE_CXX_FLAGS="$CXXFLAGS" \
     -DCMAKE_EXE_LINKER_FLAGS="$LDFLAGS" \

@@ -431,11 +431,7 @@ Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
 }
 
 Solution solveInFrame1(const PairInFrame1& pair) {
-  const double scale = pair.scale();
-  if (!std::isfinite(scale) || !pair.R.allFinite()) {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    return {Vec3::Constant(nan), Vec3::Constant(nan), nan, DiskPairFeature::rim_rim, 0, nan};
-  }
+  const double scale = pair.scale();  // finite and normal: the input was validated
   if (const auto common = internal::commonPoint(pair)) {
     return {*common, *common, 0.0, DiskPairFeature::intersecting};
   }

@@ -40,8 +40,11 @@ using fcl::Transform3;
 std::atomic<DiskDistanceMethod> g_method{DiskDistanceMethod::exact};
 
 // Counts disk-disk answers on this thread; the probe uses it to prove that a
-// query reached fcl_disk rather than FCL's GJK.
-thread_local std::uint64_t t_disk_answers = 0;
+// query reached fcl_disk rather than FCL's GJK. Initial-exec TLS: a plain
+// %fs-relative increment instead of a __tls_get_addr call on every query (a
+// shared library's default model); libfcl_disk is linked, not dlopen'ed, and
+// even dlopen finds the 8 bytes in glibc's static TLS surplus.
+__attribute__((tls_model("initial-exec"))) thread_local std::uint64_t t_disk_answers = 0;
 
 // ---------------------------------------------------------------------------
 // 1. Disk-disk entries.
@@ -141,7 +144,7 @@ template <typename S>
 bool fitForFcl(const Disk<S>* disk1, const Transform3<S>& tf1, const Disk<S>* disk2,
                const Transform3<S>& tf2) {
   const auto fit = [](const Disk<S>* disk, const Transform3<S>& tf) {
-    return disk ? isValidDiskPose(tf) && std::isfinite(disk->radius) && disk->radius > S(0)
+    return disk ? isValidDiskPose(tf) && isValidDiskRadius(disk->radius)
                 : tf.matrix().allFinite();
   };
   return fit(disk1, tf1) && fit(disk2, tf2);

@@ -21,13 +21,13 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-/// Whether (r1, X_W1, r2, X_W2) describes two disks: radii finite and > 0, poses
-/// accepted by isValidDiskPose(). The solvers answer anything else with
-/// nanDistanceResult().
+/// Whether (r1, X_W1, r2, X_W2) describes two disks: radii accepted by
+/// isValidDiskRadius(), poses by isValidDiskPose(). The solvers answer anything
+/// else with nanDistanceResult().
 template <typename S>
 bool isValidDiskPair(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2) {
-  const auto valid_radius = [](S r) { return std::isfinite(r) && r > S(0); };
-  return valid_radius(r1) && valid_radius(r2) && isValidDiskPose(X_W1) && isValidDiskPose(X_W2);
+  return isValidDiskRadius(r1) && isValidDiskRadius(r2) && isValidDiskPose(X_W1) &&
+         isValidDiskPose(X_W2);
 }
 
 /// The answer to input that describes no disk pair: NaN distance, bound and

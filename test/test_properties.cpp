@@ -433,8 +433,7 @@ TYPED_TEST(DiskSolverProperties, ExactSolverIsConsistentSymmetricInvariantAndCer
     bound_below.expectAtMost(double(result.lower_bound) - d, E::kExactDistanceRelative * scale,
                              resultText);
     const double conditioning_term =
-        d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum * scale +
-                             E::kCertificateSmallDistance * scale * scale / d)
+        d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum + E::kCertificateSmallDistance * scale / d)
               : 0.0;
     certified.expectAtMost(double(result.certifiedGap()),
                            E::kCertifiedGapRelative * scale + conditioning_term, resultText);

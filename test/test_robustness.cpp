@@ -85,7 +85,7 @@ void expectNoAnswerAnywhere(S r1, const Transform3<S>& X1, S r2, const Transform
   expectAllNaN(fcl_disk::exactDiskDistance(r1, X1, r2, X2));
   expectAllNaN(fcl_disk::almohamadSelimDiskDistance(r1, X1, r2, X2));
   EXPECT_FALSE(fcl_disk::intersectDisks(r1, X1, r2, X2));
-  if (!(std::isfinite(r1) && r1 > 0 && std::isfinite(r2) && r2 > 0)) return;  // no Disk exists
+  if (!(fcl_disk::isValidDiskRadius(r1) && fcl_disk::isValidDiskRadius(r2))) return;  // no Disk
   auto disk1 = std::make_shared<fcl_disk::Disk<S>>(r1);
   auto disk2 = std::make_shared<fcl_disk::Disk<S>>(r2);
   fcl::CollisionObject<S> a(disk1, X1), b(disk2, X2);
@@ -118,8 +118,12 @@ TYPED_TEST_SUITE(Robustness, ScalarTypes);
 
 TYPED_TEST(Robustness, InvalidRadiusThrowsNamingTheValue) {
   using S = TypeParam;
+  const S too_small = fcl_disk::kMinDiskRadius<S> / S(2);
+  const S too_large = fcl_disk::kMaxDiskLength<S> * S(2);
   for (S radius : {S(0), S(-1.5), std::numeric_limits<S>::quiet_NaN(),
-                   std::numeric_limits<S>::infinity(), -std::numeric_limits<S>::infinity()}) {
+                   std::numeric_limits<S>::infinity(), -std::numeric_limits<S>::infinity(),
+                   too_small, too_large, std::numeric_limits<S>::denorm_min(),
+                   std::numeric_limits<S>::max()}) {
     try {
       fcl_disk::Disk<S> disk(radius);
       ADD_FAILURE() << "no exception for radius " << radius;
@@ -131,11 +135,19 @@ TYPED_TEST(Robustness, InvalidRadiusThrowsNamingTheValue) {
   }
 }
 
+TYPED_TEST(Robustness, RadiusRangeEndsAreDisks) {
+  using S = TypeParam;
+  for (S radius : {fcl_disk::kMinDiskRadius<S>, fcl_disk::kMaxDiskLength<S>}) {
+    EXPECT_NO_THROW(fcl_disk::Disk<S> disk(radius)) << radius;
+  }
+}
+
 TYPED_TEST(Robustness, InvalidRadiusInSolversGivesNaN) {
   using S = TypeParam;
   for (const auto& [X1, X2] : basePairs<S>()) {
     for (S radius : {S(0), S(-1), std::numeric_limits<S>::quiet_NaN(),
-                     std::numeric_limits<S>::infinity()}) {
+                     std::numeric_limits<S>::infinity(), fcl_disk::kMinDiskRadius<S> / S(2),
+                     fcl_disk::kMaxDiskLength<S> * S(2)}) {
       SCOPED_TRACE(radius);
       expectNoAnswerAnywhere<S>(radius, X1, S(1), X2);
       expectNoAnswerAnywhere<S>(S(1), X1, radius, X2);
@@ -154,6 +166,57 @@ TYPED_TEST(Robustness, NonFinitePoseGivesNaNEverywhere) {
       SCOPED_TRACE("disk 2 " + what);
       expectNoAnswerAnywhere<S>(S(1), X1, S(0.7), bad);
     }
+  }
+}
+
+// Squares of lengths beyond kMaxDiskLength overflow inside the solvers: a
+// translation out of range is invalid input (NaN), never a made-up inf or 0.
+// At the range's ends the answers are finite and exact: two disks of radius
+// kMaxDiskLength / 4 a full kMaxDiskLength apart along x (one at -max/2, one at
+// +max/2), and two disks of radius kMinDiskRadius 3 * kMinDiskRadius apart.
+TYPED_TEST(Robustness, TranslationOutOfRangeGivesNaN) {
+  using S = TypeParam;
+  const S too_far = fcl_disk::kMaxDiskLength<S> * S(2);
+  for (const auto& [X1, X2] : basePairs<S>()) {
+    for (int axis = 0; axis < 3; ++axis) {
+      for (S value : {too_far, -too_far}) {
+        SCOPED_TRACE("axis " + std::to_string(axis) + " = " + std::to_string(double(value)));
+        Transform3<S> bad = X2;
+        bad.translation()[axis] = value;
+        expectNoAnswerAnywhere<S>(S(1), X1, S(0.7), bad);
+        expectNoAnswerAnywhere<S>(S(1), bad, S(0.7), X1);
+      }
+    }
+  }
+}
+
+TYPED_TEST(Robustness, RangeEndsGiveExactAnswers) {
+  using S = TypeParam;
+  const S big = fcl_disk::kMaxDiskLength<S>;
+  const S tiny = fcl_disk::kMinDiskRadius<S>;
+  const struct {
+    S radius;
+    S x1, x2;
+    S distance;
+  } cases[] = {{big / 4, -big / 2, big / 2, big / 2}, {tiny, S(0), 3 * tiny, tiny}};
+  for (const auto& c : cases) {
+    Transform3<S> X1 = Transform3<S>::Identity(), X2 = Transform3<S>::Identity();
+    X1.translation().x() = c.x1;
+    X2.translation().x() = c.x2;
+    // Coplanar along x: the distance is x2 - x1 - 2 r, the points on the rims.
+    for (const auto& result : {fcl_disk::exactDiskDistance(c.radius, X1, c.radius, X2),
+                               fcl_disk::almohamadSelimDiskDistance(c.radius, X1, c.radius, X2)}) {
+      EXPECT_NEAR(result.distance, c.distance, 4 * std::numeric_limits<S>::epsilon() * c.distance);
+      EXPECT_NEAR(result.p_W2.x() - result.p_W1.x(), c.distance,
+                  4 * std::numeric_limits<S>::epsilon() * c.distance);
+    }
+    EXPECT_FALSE(fcl_disk::intersectDisks(c.radius, X1, c.radius, X2));
+    auto disk1 = std::make_shared<fcl_disk::Disk<S>>(c.radius);
+    auto disk2 = std::make_shared<fcl_disk::Disk<S>>(c.radius);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> result;
+    EXPECT_NEAR(fcl::distance(disk1.get(), X1, disk2.get(), X2, request, result), c.distance,
+                4 * std::numeric_limits<S>::epsilon() * c.distance);
   }
 }
 

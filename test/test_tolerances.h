@@ -67,7 +67,8 @@ struct Eps {
   static constexpr double kCertifiedGapRelative = kExactDistanceRelative;
 
   /// exact_distance.h: for near-degenerate pairs the certified gap may reach
-  /// (r1 + r2) (sqrt(eps) scale + 8 eps scale^2 / d), eps of the scalar type:
+  /// (r1 + r2) (sqrt(eps) + 8 eps scale / d), eps of the scalar type (a length:
+  /// sceneSize() >= the header's scale only loosens the second term):
   /// the certificate's direction is known only to ~eps scale / d (tiny d) or
   /// ~sqrt(eps) (flat optima beside a face case), and the bound is Lipschitz
   /// with constant r1 + r2 at its kinks. These are the two coefficients.

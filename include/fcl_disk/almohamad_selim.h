@@ -32,8 +32,8 @@ namespace fcl_disk {
 /// Tie-breaks: a point on a disk's axis takes the in-plane case of Prop. 1/2
 /// (nearest point = its projection, no division by zero); Steps 3/4 compare
 /// with the report's strict `<`, so an exact tie goes to Step 4.
-/// Invalid input (a radius that is not finite and > 0, a pose rejected by
-/// isValidDiskPose()) gives NaN distance, lower_bound and points (feature
+/// Invalid input (a radius rejected by isValidDiskRadius(), a pose rejected by
+/// isValidDiskPose(): NaN, infinite, out of range, not orthonormal) gives NaN distance, lower_bound and points (feature
 /// unspecified); it never crashes.
 template <typename S>
 DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,

@@ -3,6 +3,8 @@
 
 #include <fcl/geometry/shape/cylinder.h>
 
+#include <fcl_disk/disk_pair.h>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -28,7 +30,9 @@ void ensureDiskFunctionsRegistered();
 /// exactly the disk).
 ///
 /// Constructing a Disk registers fcl_disk's functions (default method: exact).
-/// @throws std::invalid_argument if radius is not finite and positive.
+/// @throws std::invalid_argument if radius is outside [kMinDiskRadius,
+/// kMaxDiskLength] (disk_pair.h: 1e-100..1e100 in double, 1e-37..1e37 in float),
+/// NaN, infinite, zero and negative radii included.
 template <typename S>
 class Disk final : public fcl::Cylinder<S> {
  public:
@@ -43,9 +47,10 @@ class Disk final : public fcl::Cylinder<S> {
 
  private:
   static S checkedRadius(S radius) {
-    if (!(std::isfinite(radius) && radius > S(0))) {
+    if (!isValidDiskRadius(radius)) {
       std::ostringstream message;
-      message << "fcl_disk::Disk: radius must be finite and > 0, got " << radius;
+      message << "fcl_disk::Disk: radius must be in [" << kMinDiskRadius<S> << ", "
+              << kMaxDiskLength<S> << "], got " << radius;
       throw std::invalid_argument(message.str());
     }
     return radius;

@@ -34,8 +34,8 @@ struct DiskContact {
 /// touching (a touching pair built exactly in one frame touches only to rounding
 /// in another); such a pair may be reported either way.
 /// Returns false (contact untouched) when they are apart or the input describes
-/// no disk pair (a radius that is not finite and > 0, a pose rejected by
-/// isValidDiskPose(): NaN, infinite, not orthonormal).
+/// no disk pair (a radius rejected by isValidDiskRadius(), a pose rejected by
+/// isValidDiskPose(): NaN, infinite, out of range, not orthonormal).
 template <typename S>
 bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2,
                     DiskContact<S>* contact = nullptr);

@@ -48,7 +48,28 @@ struct DiskDistanceResult {
 template <typename S>
 constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) : S(1e-6);
 
-/// Whether X_WD can be a disk's pose: a finite translation and a rotation within
+/// The lengths fcl_disk answers for: radii in [kMinDiskRadius, kMaxDiskLength] and
+/// pose translations whose coordinates are at most kMaxDiskLength in magnitude.
+/// The solvers work in double and square lengths (the distance through
+/// |x - q|^2 / 2, tolerances through 1e-13 * scale): within 1e-100..1e100 every
+/// square and every tolerance is a normal double, so the relative guarantees
+/// hold; beyond, squares overflow to inf or underflow into denormals and the
+/// answer would be a made-up inf or 0. In float the limits keep every result
+/// (|c1 - c2| + r1 + r2 < 6e37) and point a normal, finite float. Out of range
+/// counts as invalid input: NaN distance, no contact (docs/robustness.md).
+template <typename S>
+constexpr S kMaxDiskLength = std::is_same<S, float>::value ? S(1e37) : S(1e100);
+template <typename S>
+constexpr S kMinDiskRadius = std::is_same<S, float>::value ? S(1e-37) : S(1e-100);
+
+/// Whether r can be a disk's radius: in [kMinDiskRadius, kMaxDiskLength] (NaN is not).
+template <typename S>
+constexpr bool isValidDiskRadius(S r) {
+  return r >= kMinDiskRadius<S> && r <= kMaxDiskLength<S>;
+}
+
+/// Whether X_WD can be a disk's pose: a translation within kMaxDiskLength in
+/// every coordinate (so finite) and a rotation within
 /// kRotationDefectTolerance of orthonormal (reflections, det = -1, are accepted:
 /// the reflected disk is the same set). Every fcl_disk query on a disk whose pose
 /// fails this returns a NaN distance and no contact (docs/robustness.md): NaN or
@@ -56,17 +77,19 @@ constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) :
 /// not describe a disk.
 template <typename S>
 inline bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
-  // Runs on every query, so written out: the translation's finiteness (x - x is
-  // 0 only for finite x) and the six distinct entries of R^T R - I.
+  // Runs on every query, so written out without branches: the translation's
+  // range and the six distinct entries of R^T R - I (NaN fails every comparison).
   const auto& M = X_WD.matrix();
-  const S tolerance = kRotationDefectTolerance<S>;
   const auto dot = [&M](int i, int j) {
     return M(0, i) * M(0, j) + M(1, i) * M(1, j) + M(2, i) * M(2, j);
   };
-  const auto within = [tolerance](S defect) { return std::abs(defect) <= tolerance; };
-  return (M(0, 3) - M(0, 3) == S(0)) & (M(1, 3) - M(1, 3) == S(0)) &
-         (M(2, 3) - M(2, 3) == S(0)) & within(dot(0, 0) - S(1)) & within(dot(1, 1) - S(1)) &
-         within(dot(2, 2) - S(1)) & within(dot(0, 1)) & within(dot(0, 2)) & within(dot(1, 2));
+  const S defects[6] = {dot(0, 0) - S(1), dot(1, 1) - S(1), dot(2, 2) - S(1),
+                        dot(0, 1),        dot(0, 2),        dot(1, 2)};
+  bool valid = std::abs(M(0, 3)) <= kMaxDiskLength<S>;
+  valid &= std::abs(M(1, 3)) <= kMaxDiskLength<S>;
+  valid &= std::abs(M(2, 3)) <= kMaxDiskLength<S>;
+  for (const S defect : defects) valid &= std::abs(defect) <= kRotationDefectTolerance<S>;
+  return valid;
 }
 
 /// Length of the projection of w onto the plane of the disk with rotation R

@@ -24,7 +24,8 @@ namespace fcl_disk {
 /// if the gap stays open, a global search along disk 1's rim as fallback.
 ///
 /// Guarantee (double): |distance - d_true| <= 1e-12 * (r1 + r2 + |c1 - c2|): relative,
-/// at every length scale (tested for radii 1e-9..1e9, coordinates up to 1e9),
+/// at every length scale in range (kMinDiskRadius..kMaxDiskLength; tested for
+/// radii 1e-9..1e9, coordinates up to 1e9, and by fuzzing over the whole range),
 /// and both points lie on their disks to the same bound plus the rounding of
 /// storing them in world coordinates (ulp(|c_i|)); distance == |p_W2 - p_W1| up
 /// to that rounding. lower_bound is the duality certificate (at the returned
@@ -55,10 +56,11 @@ namespace fcl_disk {
 ///   stops at a certified gap of 1e-14 * scale, at the rounding floor (flat,
 ///   near-degenerate optima, e.g. next to a face case), or after 16 iterations;
 ///   the best pair found is returned and lower_bound says how well it is proven.
-/// Invalid input never crashes and never gets a finite made-up answer: a radius
-/// that is not finite and > 0, or a pose rejected by isValidDiskPose() (NaN or
-/// infinite entries, a rotation further than kRotationDefectTolerance from
-/// orthonormal) gives NaN distance, lower_bound and points (feature unspecified).
+/// Invalid input never crashes and never gets a made-up answer: a radius
+/// rejected by isValidDiskRadius() or a pose rejected by isValidDiskPose() (NaN
+/// or infinite entries, lengths outside kMinDiskRadius..kMaxDiskLength, where
+/// squares would overflow or underflow, a rotation further than
+/// kRotationDefectTolerance from orthonormal) gives NaN distance, lower_bound and points (feature unspecified).
 /// An accepted, slightly non-orthonormal rotation is used as given (see
 /// kRotationDefectTolerance for what that costs).
 template <typename S>

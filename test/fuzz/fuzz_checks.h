@@ -184,8 +184,9 @@ double storageRounding(std::initializer_list<Vector3d> points) {
 }
 
 // ----------------------------------------------------------------------------
-// The bad-input policy (disk_pair.h, isValidDiskPose): a radius that is not
-// finite and > 0, a non-finite pose entry, or a rotation further than
+// The bad-input policy (disk_pair.h, isValidDiskRadius, isValidDiskPose): a
+// radius outside [kMinDiskRadius, kMaxDiskLength], a non-finite pose entry, a
+// translation beyond kMaxDiskLength, or a rotation further than
 // kRotationDefectTolerance<S> from orthonormal describes no disk pair and gets
 // NaN distance, lower_bound and points and no contact; a rotation within the
 // tolerance is used as given, at a cost of defect * (r1 + r2) in distance.
@@ -210,19 +211,19 @@ enum class Verdict {
 
 template <typename S>
 Verdict verdictOf(const DiskPairInput<S>& in) {
-  if (!in.radiiValid() || !in.posesFinite()) return Verdict::no_disk_pair;
+  if (!in.radiiValid() || !in.posesFinite() || !in.translationsInRange())
+    return Verdict::no_disk_pair;
   const double defect = maxDefect(in);
   const double tolerance = fcl_disk::kRotationDefectTolerance<S>;
-  if (!(defect <= (1 + kPolicyMargin) * tolerance)) return Verdict::no_disk_pair;  // also overflow
+  if (!(defect <= (1 + kPolicyMargin) * tolerance)) return Verdict::no_disk_pair;  // also NaN
   if (defect >= (1 - kPolicyMargin) * tolerance) return Verdict::borderline;
   return Verdict::accepted;
 }
 
-/// Accepted, and inside the magnitudes where every guarantee applies
-/// (kSafeMagnitude, kMinSafeScale).
+/// Accepted (not borderline): every guarantee applies, at any magnitude in range.
 template <typename S>
 bool fullyChecked(const DiskPairInput<S>& in) {
-  return verdictOf(in) == Verdict::accepted && in.withinSafeMagnitude();
+  return verdictOf(in) == Verdict::accepted;
 }
 
 /// Spectral norm of a symmetric 3x3 matrix per unit of its largest entry
@@ -243,10 +244,6 @@ double defectCost(const DiskPairInput<S>& in) {
   const Vector3d c2 = in.X_W2.translation().template cast<double>();
   return kDefectNormFactor * maxDefect(in) * (double(in.r1) + double(in.r2) + (c2 - c1).norm());
 }
-
-/// Whether `d` is acceptable for an accepted input outside the safe magnitudes,
-/// where sums and squares overflow or underflow: NaN, or >= 0 (+inf included).
-inline bool acceptableOverflowDistance(double d) { return std::isnan(d) || d >= 0; }
 
 template <typename S>
 bool allNaN(const fcl_disk::DiskDistanceResult<S>& r) {

@@ -88,20 +88,6 @@ inline const char* modeName(Mode mode) {
 constexpr double kMinMagnitude = 1e-9;
 constexpr double kMaxMagnitude = 1e9;
 
-/// Beyond this, sums and squares inside the solvers overflow (|c|^2 at ~1e154 in
-/// double; results cast to float at ~3e38), so NaN or +inf is acceptable for
-/// finite input; below it every guarantee applies.
-template <typename S>
-constexpr double kSafeMagnitude = std::is_same<S, float>::value ? 1e37 : 1e150;
-
-/// Below this scene size (r1 + r2 + |c1 - c2|) squares underflow into
-/// denormals and zero (double: (1e-160)^2 = 1e-320), so relative accuracy
-/// cannot hold (found: two 5e-324 disks 1e-323 apart get distance 0). Float
-/// input is computed in double, where float's smallest scales still square
-/// safely.
-template <typename S>
-constexpr double kMinSafeScale = std::is_same<S, float>::value ? 0.0 : 1e-150;
-
 template <typename S>
 struct DiskPairInput {
   Mode mode{Mode::generic};
@@ -115,21 +101,15 @@ struct DiskPairInput {
   /// poses were rounded to S), where the mode gives it in closed form.
   std::optional<double> known_distance;
 
-  static bool radiusValid(S r) { return std::isfinite(r) && r > S(0); }
+  /// The library's range (disk_pair.h): radii in [kMinDiskRadius, kMaxDiskLength],
+  /// translations within kMaxDiskLength; out of range is no disk pair (NaN).
+  static bool radiusValid(S r) { return fcl_disk::isValidDiskRadius(r); }
   bool radiiValid() const { return radiusValid(r1) && radiusValid(r2); }
   bool posesFinite() const { return X_W1.matrix().allFinite() && X_W2.matrix().allFinite(); }
-
-  /// Every radius and pose entry within kSafeMagnitude, and the scene size
-  /// r1 + r2 + |c1 - c2| at least kMinSafeScale.
-  bool withinSafeMagnitude() const {
-    const double limit = kSafeMagnitude<S>;
-    const double scale = double(r1) + double(r2) +
-                         (X_W2.translation().template cast<double>() -
-                          X_W1.translation().template cast<double>()).norm();
-    return std::abs(double(r1)) <= limit && std::abs(double(r2)) <= limit &&
-           X_W1.matrix().template cast<double>().cwiseAbs().maxCoeff() <= limit &&
-           X_W2.matrix().template cast<double>().cwiseAbs().maxCoeff() <= limit &&
-           scale >= kMinSafeScale<S>;
+  bool translationsInRange() const {
+    const double limit = fcl_disk::kMaxDiskLength<S>;
+    return X_W1.translation().template cast<double>().cwiseAbs().maxCoeff() <= limit &&
+           X_W2.translation().template cast<double>().cwiseAbs().maxCoeff() <= limit;
   }
 };
 
