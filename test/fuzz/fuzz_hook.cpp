@@ -12,7 +12,7 @@
 // - a DynamicAABBTreeCollisionManager over a chain of disks gives the least
 //   pair distance and a collision exactly when some pair collides;
 // - Disk's constructor throws std::invalid_argument exactly for a radius that
-//   is not finite and > 0.
+//   is outside the library's range (isValidDiskRadius).
 // Option byte after the pair: bit 0 selects DiskDistanceMethod::almohamad_selim,
 // bit 1 enable_signed_distance, bits 2-3 the number of extra disks (0-2) in the
 // broadphase chain.
