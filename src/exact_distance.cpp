@@ -304,12 +304,14 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   const double certify_below = kCertifyStep * scale;
   const double tiny_psi = 0.5 * gap_tolerance * gap_tolerance;  // distance within tolerance of 0
   Solution current{Vec3(s.x(), s.y(), 0.0), at.q, 0.0, DiskPairFeature::rim_rim};
-  auto finish = [&](int iteration) {
+  // `lower`: the certificate at the current iterate, when already evaluated.
+  auto finish = [&](int iteration, std::optional<double> lower = std::nullopt) {
     current.p = Vec3(s.x(), s.y(), 0.0);
     current.q = at.q;
     current.distance = std::sqrt(2.0 * at.psi);
     current.iterations = iteration;
-    current.lower_bound = std::max(face_lower_bound, separationLowerBound(pair, at.q - current.p));
+    current.lower_bound =
+        lower ? *lower : std::max(face_lower_bound, separationLowerBound(pair, at.q - current.p));
     return current;
   };
   for (int iteration = 1; iteration <= kMaxNewtonIterations; ++iteration) {
@@ -321,6 +323,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     const bool on_rim = radius >= r1 * (1.0 - kOnRimTolerance) &&
                         lambda >= -kInwardGradientTolerance * at.gradient.norm() / r1;
     double dtheta = 0.0;
+    double predicted_decrease = 0.0;  // of psi, by the rim Newton step
     if (on_rim) {
       // Newton in the rim angle theta: psi' = r1 g.t, psi'' = r1^2 (t'Ht + lambda).
       const double slope = r1 * at.gradient.dot(tangent);
@@ -328,17 +331,22 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
           r1 * r1 * (tangent.dot(at.hessian * tangent) + std::max(lambda, 0.0));
       dtheta = curvature > 0.0 ? -slope / curvature : -std::copysign(kMaxRimStep, slope);
       dtheta = std::clamp(dtheta, -kMaxRimStep, kMaxRimStep);
+      predicted_decrease = 0.5 * std::abs(slope * dtheta);
     }
     // Certify once the iteration has (nearly) converged: Newton converges
-    // quadratically, so the gap closes within a step or two of here.
-    if (!on_rim || std::abs(dtheta) * r1 <= certify_below || at.psi <= tiny_psi) {
+    // quadratically, so the gap closes within a step or two of here. Not while
+    // the step is predicted to shorten the distance by more than the tolerance
+    // (d psi = d dd): the gap is at least that, so the certificate would fail.
+    const bool converging = std::abs(dtheta) * r1 <= certify_below &&
+                            predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
+    if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
       const double lower = std::max(face_lower_bound, separationLowerBound(pair, at.q - x));
-      if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration);
+      if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration, lower);
       // Converged to rounding: the step no longer moves the point. The
       // certificate's own rounding grows like scale * (eps * scale / d)^2 for
       // small distances d, so it may not reach kGapTolerance; it is reported.
-      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) return finish(iteration);
+      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) return finish(iteration, lower);
     }
     PointToDisk2 next;
     Vec2 s_next;
