@@ -444,6 +444,23 @@ void install() {
   std::call_once(g_install_once, installOnce);
 }
 
+// Installed when libfcl_disk is loaded: before main() for a linked library,
+// inside dlopen() for a plugin, so before any thread of the program can
+// dispatch through the tables. FCL reads its tables with plain loads; patching
+// them while another thread dispatches would be a data race (ThreadSanitizer
+// found it when the first Disk was built on one thread while another queried
+// spheres). A failure is not thrown here, where it would terminate the program
+// at load: call_once then stays unset, and the first Disk or
+// registerDiskFunctions() retries and throws the message.
+[[maybe_unused]] const bool g_installed_at_load = [] {
+  try {
+    install();
+    return true;
+  } catch (const std::exception&) {
+    return false;
+  }
+}();
+
 }  // namespace
 
 namespace detail {

@@ -4,9 +4,10 @@
 // intersecting, near-touching) through the CollisionObject and the
 // geometry + transform APIs, float and double, both GJK solver types; pairs that
 // fcl_disk forwards to FCL (real cylinders, disks against spheres and boxes);
-// and the same while another thread registers: the first installation, the same
-// method again and again, or switching methods (each answer is then one of the
-// two methods' serial answers).
+// and the same while another thread registers: the first Disk or registration
+// call, the same method again and again, or switching methods (each answer is
+// then one of the two methods' serial answers). FCL's tables themselves are
+// patched at load time, before main() (TablesArePatchedBeforeMain).
 //
 // Sharing rules followed here (FCL's own; docs/robustness.md): geometries and
 // CollisionObjects are built before the threads start and only read by them
@@ -22,6 +23,7 @@
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/detail/distance_func_matrix.h>
 #include <fcl/narrowphase/distance.h>
 #include <fcl_disk/fcl_disk.h>
 #include <gtest/gtest.h>
@@ -513,14 +515,41 @@ Tally queryFromManyThreads(const Workload& workload, const AcceptedAnswers& acce
 }
 
 // ----------------------------------------------------------------------------
-// Tests. The installation test comes first: ctest runs each test in its own
-// process (gtest_discover_tests), where it is always the first registration;
-// run as one binary, gtest keeps this order.
+// Tests.
 
-// The first registration patches FCL's tables while other threads dispatch
-// through them (real cylinders, spheres, boxes: no Disk exists yet, so nothing
-// has registered). Their answers must not change, during or after.
-TEST(Concurrency, FirstRegistrationWhileOtherShapesAreQueried) {
+/// Whether the live table's GEOM_CYLINDER row differs from FCL's own
+/// constructor's (a freshly built matrix holds FCL's original entries). The
+/// comparison means something only if the two agree where fcl_disk does not
+/// patch (the entries resolve to the same instantiations), checked first.
+template <typename Solver>
+bool cylinderSlotsPatched() {
+  const fcl::detail::DistanceFunctionMatrix<Solver> pristine;
+  const auto& live = fcl::getDistanceFunctionLookTable<Solver>().distance_matrix;
+  EXPECT_EQ(live[fcl::GEOM_SPHERE][fcl::GEOM_BOX], pristine.distance_matrix[fcl::GEOM_SPHERE][fcl::GEOM_BOX])
+      << "the test's and the live table's FCL entries differ: cannot tell patched slots";
+  for (int other = 0; other < fcl::NODE_COUNT; ++other) {
+    const auto original = pristine.distance_matrix[fcl::GEOM_CYLINDER][other];
+    if (original && live[fcl::GEOM_CYLINDER][other] == original) return false;
+  }
+  return true;
+}
+
+// FCL reads its tables without synchronisation, so they must never be patched
+// while another thread dispatches: fcl_disk installs when the library is loaded,
+// before main() and so before any thread exists. Checked first thing in the
+// process (ctest runs each test in its own process), before any Disk or
+// registerDiskFunctions() call.
+TEST(Concurrency, TablesArePatchedBeforeMain) {
+  EXPECT_TRUE(cylinderSlotsPatched<fcl::detail::GJKSolver_libccd<float>>());
+  EXPECT_TRUE(cylinderSlotsPatched<fcl::detail::GJKSolver_indep<float>>());
+  EXPECT_TRUE(cylinderSlotsPatched<fcl::detail::GJKSolver_libccd<double>>());
+  EXPECT_TRUE(cylinderSlotsPatched<fcl::detail::GJKSolver_indep<double>>());
+}
+
+// Registering (explicitly, or by building the first Disk) while other threads
+// dispatch other shapes (real cylinders, spheres, boxes) changes none of their
+// answers, during or after, and disk pairs get fcl_disk's answer afterwards.
+TEST(Concurrency, RegistrationWhileOtherShapesAreQueried) {
   Random random(kSceneSeed);
   const Workload workload(otherPairs(random, /*with_disks=*/false), /*broadphase=*/{});
   const std::vector<Fingerprint> serial = serialAnswers(workload);
@@ -563,7 +592,7 @@ TEST(Concurrency, FirstRegistrationWhileOtherShapesAreQueried) {
 
   EXPECT_EQ(total.mismatches, 0) << "first: " << total.first_mismatch;
   EXPECT_GT(total.queries, 0);
-  // The hook is in: a disk pair now gets fcl_disk's answer.
+  // The hook is in: a disk pair gets fcl_disk's answer.
   auto disk = std::make_shared<fcl_disk::Diskd>(1.0);
   Pose lifted = Pose::Identity();
   lifted.translation() << 0.3, 0.0, 0.5;

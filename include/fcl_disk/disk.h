@@ -29,7 +29,9 @@ void ensureDiskFunctionsRegistered();
 /// Disk versus other shapes is answered by FCL (GJK on the flat cylinder, which is
 /// exactly the disk).
 ///
-/// Constructing a Disk registers fcl_disk's functions (default method: exact).
+/// fcl_disk's functions are installed when the library is loaded (default method:
+/// exact); constructing a Disk checks that they are (throws std::runtime_error,
+/// saying why, if the hook could not take effect in this process).
 /// @throws std::invalid_argument if radius is outside [kMinDiskRadius,
 /// kMaxDiskLength] (disk_pair.h: 1e-100..1e100 in double, 1e-37..1e37 in float),
 /// NaN, infinite, zero and negative radii included.

@@ -19,10 +19,14 @@ enum class DiskDistanceMethod {
 /// docs/fcl_hook.md). Every other pair, real fcl::Cylinder pairs included, keeps
 /// FCL's own function.
 ///
-/// Idempotent and thread-safe: installation happens once; later calls only
-/// change the method (an atomic store, seen by queries that start afterwards).
-/// Constructing a Disk calls this with the default if nothing was registered.
-/// @throws std::runtime_error if the hook cannot take effect in this process
+/// Installation happens once, when libfcl_disk is loaded (before main(), or
+/// inside dlopen() for a plugin), so it never overlaps a query: FCL reads its
+/// tables without synchronisation. This function (and a Disk's constructor)
+/// only makes sure it happened and, here, stores the method: an atomic store,
+/// safe while other threads query, seen by queries that start afterwards.
+/// The one unsynchronised window left: dlopen()ing a plugin that links
+/// fcl_disk while other threads are inside FCL queries (docs/robustness.md).
+/// @throws std::runtime_error if the hook could not take effect in this process
 ///         (e.g. an FCL build whose private tables cannot be found); the message
 ///         says how to fix it. Queries never silently fall back to GJK.
 void registerDiskFunctions(DiskDistanceMethod method = DiskDistanceMethod::exact);
