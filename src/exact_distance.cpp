@@ -346,7 +346,9 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
       // Converged to rounding: the step no longer moves the point. The
       // certificate's own rounding grows like scale * (eps * scale / d)^2 for
       // small distances d, so it may not reach kGapTolerance; it is reported.
-      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) return finish(iteration, lower);
+      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) {
+        return finish(iteration, lower);
+      }
     }
     PointToDisk2 next;
     Vec2 s_next;

@@ -42,8 +42,9 @@ std::atomic<DiskDistanceMethod> g_method{DiskDistanceMethod::exact};
 // Counts disk-disk answers on this thread; the probe uses it to prove that a
 // query reached fcl_disk rather than FCL's GJK. Initial-exec TLS: a plain
 // %fs-relative increment instead of a __tls_get_addr call on every query (a
-// shared library's default model); libfcl_disk is linked, not dlopen'ed, and
-// even dlopen finds the 8 bytes in glibc's static TLS surplus.
+// shared library's default model). When libfcl_disk is dlopen'ed (a plugin's
+// dependency), glibc serves these 8 bytes from its static TLS surplus; the
+// consumer test's dlopen cases exercise that.
 __attribute__((tls_model("initial-exec"))) thread_local std::uint64_t t_disk_answers = 0;
 
 // ---------------------------------------------------------------------------

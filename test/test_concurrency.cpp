@@ -525,7 +525,8 @@ template <typename Solver>
 bool cylinderSlotsPatched() {
   const fcl::detail::DistanceFunctionMatrix<Solver> pristine;
   const auto& live = fcl::getDistanceFunctionLookTable<Solver>().distance_matrix;
-  EXPECT_EQ(live[fcl::GEOM_SPHERE][fcl::GEOM_BOX], pristine.distance_matrix[fcl::GEOM_SPHERE][fcl::GEOM_BOX])
+  EXPECT_EQ(live[fcl::GEOM_SPHERE][fcl::GEOM_BOX],
+            pristine.distance_matrix[fcl::GEOM_SPHERE][fcl::GEOM_BOX])
       << "the test's and the live table's FCL entries differ: cannot tell patched slots";
   for (int other = 0; other < fcl::NODE_COUNT; ++other) {
     const auto original = pristine.distance_matrix[fcl::GEOM_CYLINDER][other];

@@ -33,8 +33,8 @@ namespace fcl_disk {
 /// (nearest point = its projection, no division by zero); Steps 3/4 compare
 /// with the report's strict `<`, so an exact tie goes to Step 4.
 /// Invalid input (a radius rejected by isValidDiskRadius(), a pose rejected by
-/// isValidDiskPose(): NaN, infinite, out of range, not orthonormal) gives NaN distance, lower_bound and points (feature
-/// unspecified); it never crashes.
+/// isValidDiskPose(): NaN, infinite, out of range, not orthonormal) gives NaN
+/// distance, lower_bound and points (feature unspecified); it never crashes.
 template <typename S>
 DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                                  const fcl::Transform3<S>& X_W2);

@@ -60,7 +60,8 @@ namespace fcl_disk {
 /// rejected by isValidDiskRadius() or a pose rejected by isValidDiskPose() (NaN
 /// or infinite entries, lengths outside kMinDiskRadius..kMaxDiskLength, where
 /// squares would overflow or underflow, a rotation further than
-/// kRotationDefectTolerance from orthonormal) gives NaN distance, lower_bound and points (feature unspecified).
+/// kRotationDefectTolerance from orthonormal) gives NaN distance, lower_bound
+/// and points (feature unspecified).
 /// An accepted, slightly non-orthonormal rotation is used as given (see
 /// kRotationDefectTolerance for what that costs).
 template <typename S>

@@ -7,7 +7,8 @@
 // recomputed here), equal to the closed-form distance where the mode knows it,
 // and symmetric under swapping the disks; an accepted non-orthonormal rotation
 // adds its documented cost. Input describing no disk pair (radius or
-// translation out of range, NaN/inf, rotation beyond the tolerance): NaN distance, lower_bound and points.
+// translation out of range, NaN/inf, rotation beyond the tolerance): NaN
+// distance, lower_bound and points.
 #include <fcl_disk/exact_distance.h>
 
 #include <cmath>
