@@ -89,10 +89,9 @@ struct Eps {
   /// shows the disks were just touching at the reported depth.
   static constexpr double kSeparationStepRelative = 100 * kIntersectionBandRelative;
 
-  /// | |normal| - 1 |, absolute. The normal may be a column of the input rotation,
-  /// which is unit only as far as the input is orthonormal: our generated
-  /// rotations (quaternion -> matrix, then products) are off by up to ~10 ulps
-  /// (measured 2.3e-15 in double), plus one normalisation. 32 ulps.
+  /// | |normal| - 1 |, absolute. intersectDisks() normalises its normal in
+  /// double (even for rotations accepted within their defect tolerance); what
+  /// is left is that rounding and, in float, storing it: 32 ulps.
   static constexpr double kUnitNormal = 32 * kUnitRoundoff;
 
   // ------------------------------------------------------- Almohamad-Selim solver
