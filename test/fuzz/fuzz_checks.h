@@ -189,7 +189,8 @@ double storageRounding(std::initializer_list<Vector3d> points) {
 // translation beyond kMaxDiskLength, or a rotation further than
 // kRotationDefectTolerance<S> from orthonormal describes no disk pair and gets
 // NaN distance, lower_bound and points and no contact; a rotation within the
-// tolerance is used as given, at a cost of defect * (r1 + r2) in distance.
+// tolerance is used as given, at a cost of about defect * (r1 + r2 + |c1 - c2|)
+// in distance (defectCost below).
 
 /// The larger rotation defect of the two poses: ~1e-16 for our constructed
 /// rotations, up to the tolerance for raw perturbed ones.
