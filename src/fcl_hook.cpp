@@ -30,6 +30,7 @@
 #include "fcl_disk/disk.h"
 #include "fcl_disk/disk_intersection.h"
 #include "fcl_disk/exact_distance.h"
+#include "fcl_disk/fcl_templates.h"
 
 namespace fcl_disk {
 namespace {
@@ -478,3 +479,45 @@ DiskDistanceMethod registeredDiskDistanceMethod() {
 }
 
 }  // namespace fcl_disk
+
+// The instantiations declared in fcl_disk/fcl_templates.h. This file
+// instantiates all of them anyway (the tables above, the probe), so providing
+// them here costs little and spares every user file that queries disks in
+// float FCL's whole float dispatch (~50 s of compilation per entry point).
+namespace fcl {
+
+template float distance(const CollisionObject<float>* o1, const CollisionObject<float>* o2,
+                        const DistanceRequest<float>& request, DistanceResult<float>& result);
+
+template float distance(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
+                        const CollisionGeometry<float>* o2, const Transform3<float>& tf2,
+                        const DistanceRequest<float>& request, DistanceResult<float>& result);
+
+template std::size_t collide(const CollisionObject<float>* o1, const CollisionObject<float>* o2,
+                             const CollisionRequest<float>& request,
+                             CollisionResult<float>& result);
+
+template std::size_t collide(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
+                             const CollisionGeometry<float>* o2, const Transform3<float>& tf2,
+                             const CollisionRequest<float>& request,
+                             CollisionResult<float>& result);
+
+template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>&
+getDistanceFunctionLookTable<detail::GJKSolver_libccd<float>>();
+template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>&
+getDistanceFunctionLookTable<detail::GJKSolver_indep<float>>();
+template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<double>>&
+getDistanceFunctionLookTable<detail::GJKSolver_libccd<double>>();
+template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<double>>&
+getDistanceFunctionLookTable<detail::GJKSolver_indep<double>>();
+
+template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>&
+getCollisionFunctionLookTable<detail::GJKSolver_libccd<float>>();
+template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>&
+getCollisionFunctionLookTable<detail::GJKSolver_indep<float>>();
+template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<double>>&
+getCollisionFunctionLookTable<detail::GJKSolver_libccd<double>>();
+template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<double>>&
+getCollisionFunctionLookTable<detail::GJKSolver_indep<double>>();
+
+}  // namespace fcl

@@ -517,22 +517,26 @@ Tally queryFromManyThreads(const Workload& workload, const AcceptedAnswers& acce
 // ----------------------------------------------------------------------------
 // Tests.
 
-/// Whether the live table's GEOM_CYLINDER row differs from FCL's own
-/// constructor's (a freshly built matrix holds FCL's original entries). The
-/// comparison means something only if the two agree where fcl_disk does not
-/// patch (the entries resolve to the same instantiations), checked first.
+/// Whether the live table's cylinder slots no longer hold the functions FCL's
+/// constructor puts there (fcl/narrowphase/detail/distance_func_matrix-inl.h).
+/// The comparison means something only if an entry fcl_disk does not patch
+/// still equals FCL's function (same instantiation, same address): checked first.
+/// Naming FCL's functions instantiates three of them, where building a whole
+/// pristine matrix would instantiate FCL's entire float dispatch in this file.
 template <typename Solver>
 bool cylinderSlotsPatched() {
-  const fcl::detail::DistanceFunctionMatrix<Solver> pristine;
+  using S = typename Solver::S;
+  using fcl::detail::ShapeShapeDistance;
   const auto& live = fcl::getDistanceFunctionLookTable<Solver>().distance_matrix;
   EXPECT_EQ(live[fcl::GEOM_SPHERE][fcl::GEOM_BOX],
-            pristine.distance_matrix[fcl::GEOM_SPHERE][fcl::GEOM_BOX])
-      << "the test's and the live table's FCL entries differ: cannot tell patched slots";
-  for (int other = 0; other < fcl::NODE_COUNT; ++other) {
-    const auto original = pristine.distance_matrix[fcl::GEOM_CYLINDER][other];
-    if (original && live[fcl::GEOM_CYLINDER][other] == original) return false;
-  }
-  return true;
+            (&ShapeShapeDistance<fcl::Sphere<S>, fcl::Box<S>, Solver>))
+      << "the live table's unpatched entries are not FCL's functions: cannot tell patched slots";
+  return live[fcl::GEOM_CYLINDER][fcl::GEOM_CYLINDER] !=
+             &ShapeShapeDistance<fcl::Cylinder<S>, fcl::Cylinder<S>, Solver> &&
+         live[fcl::GEOM_CYLINDER][fcl::GEOM_SPHERE] !=
+             &ShapeShapeDistance<fcl::Cylinder<S>, fcl::Sphere<S>, Solver> &&
+         live[fcl::GEOM_SPHERE][fcl::GEOM_CYLINDER] !=
+             &ShapeShapeDistance<fcl::Sphere<S>, fcl::Cylinder<S>, Solver>;
 }
 
 // FCL reads its tables without synchronisation, so they must never be patched

@@ -4,6 +4,9 @@
 #include <fcl/geometry/shape/cylinder.h>
 
 #include <fcl_disk/disk_pair.h>
+// Disks are queried through fcl::distance / fcl::collide; in float those come
+// precompiled from libfcl_disk instead of being instantiated per file.
+#include <fcl_disk/fcl_templates.h>
 
 #include <cmath>
 #include <sstream>

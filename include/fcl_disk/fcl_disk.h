@@ -7,4 +7,5 @@
 #include <fcl_disk/disk_intersection.h>
 #include <fcl_disk/disk_pair.h>
 #include <fcl_disk/exact_distance.h>
+#include <fcl_disk/fcl_templates.h>
 #include <fcl_disk/registration.h>

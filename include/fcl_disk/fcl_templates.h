@@ -1,0 +1,66 @@
+// FCL templates that libfcl_disk compiles once, so that files using disks need not.
+//
+// Debian's libfcl instantiates fcl::distance and fcl::collide for double only
+// (its headers declare them `extern template`). Every translation unit that
+// calls them in float therefore instantiates FCL's whole float dispatch (every
+// shape pair and BVH traversal, for both GJK solvers): about 50 s of GCC -O2
+// per entry point (docs/fcl_hook.md, "Build time"). The same holds, in float
+// and double, for the lookup tables behind the overloads that take a solver.
+// libfcl_disk compiles all of these anyway (its hook patches those tables), so
+// it provides explicit instantiations and this header declares them, as FCL
+// does for its double entry points; fcl_disk/disk.h includes it.
+//
+// Include it before a translation unit's first use of these templates (C++
+// requires the declaration to precede the implicit instantiation); including
+// fcl_disk's headers first does that. Behaviour is unchanged: the same code,
+// compiled once.
+#pragma once
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <cstddef>
+
+namespace fcl {
+
+extern template float distance(const CollisionObject<float>* o1,
+                               const CollisionObject<float>* o2,
+                               const DistanceRequest<float>& request,
+                               DistanceResult<float>& result);
+
+extern template float distance(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
+                               const CollisionGeometry<float>* o2, const Transform3<float>& tf2,
+                               const DistanceRequest<float>& request,
+                               DistanceResult<float>& result);
+
+extern template std::size_t collide(const CollisionObject<float>* o1,
+                                    const CollisionObject<float>* o2,
+                                    const CollisionRequest<float>& request,
+                                    CollisionResult<float>& result);
+
+extern template std::size_t collide(const CollisionGeometry<float>* o1,
+                                    const Transform3<float>& tf1,
+                                    const CollisionGeometry<float>* o2,
+                                    const Transform3<float>& tf2,
+                                    const CollisionRequest<float>& request,
+                                    CollisionResult<float>& result);
+
+extern template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>&
+getDistanceFunctionLookTable<detail::GJKSolver_libccd<float>>();
+extern template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>&
+getDistanceFunctionLookTable<detail::GJKSolver_indep<float>>();
+extern template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<double>>&
+getDistanceFunctionLookTable<detail::GJKSolver_libccd<double>>();
+extern template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<double>>&
+getDistanceFunctionLookTable<detail::GJKSolver_indep<double>>();
+
+extern template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>&
+getCollisionFunctionLookTable<detail::GJKSolver_libccd<float>>();
+extern template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>&
+getCollisionFunctionLookTable<detail::GJKSolver_indep<float>>();
+extern template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<double>>&
+getCollisionFunctionLookTable<detail::GJKSolver_libccd<double>>();
+extern template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<double>>&
+getCollisionFunctionLookTable<detail::GJKSolver_indep<double>>();
+
+}  // namespace fcl
