@@ -151,39 +151,56 @@ double faceLowerBound(const PairInFrame1& pair) {
   return std::max({0.0, over_plane1, over_plane2});
 }
 
-/// The certificate along the separation q - p of a pair (frame 1).
+/// The certificate along the separation q - p of a pair (frame 1). g is
+/// positively homogeneous, so g(w / |w|) = g(w) / |w|: one division.
 double separationLowerBound(const PairInFrame1& pair, const Vec3& separation) {
   const double length = separation.norm();
-  return length > 0.0 ? lowerBound(pair, separation / length) : 0.0;
+  return length > 0.0 ? lowerBound(pair, separation) / length : 0.0;
 }
 
 /// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1, with its gradient
 /// and Hessian in plane 1's coordinates (docs/exact_distance.md, section 4).
+/// The Hessian is kept in its factored form H = a I + b v v^T: the rim
+/// iteration needs only t^T H t, and only the model step needs the matrix.
 struct PointToDisk2 {
   Vec3 q;          ///< proj_K2(x), frame 1.
   double psi;      ///< |x - q|^2 / 2.
   Vec2 gradient;   ///< (x - q)_xy.
-  Eigen::Matrix2d hessian;
+  double hessian_identity;  ///< a: 0 over disk 2's face, 1 over its rim.
+  double hessian_rank_one;  ///< b: 1 over the face, -r2/rho over the rim.
+  Vec2 hessian_direction;   ///< v: m2 over the face, t_xy over the rim.
+
+  double curvatureAlong(const Vec2& d) const {
+    const double vd = hessian_direction.dot(d);
+    return hessian_identity * d.squaredNorm() + hessian_rank_one * vd * vd;
+  }
+  Eigen::Matrix2d hessian() const {
+    return hessian_identity * Eigen::Matrix2d::Identity() +
+           hessian_rank_one * hessian_direction * hessian_direction.transpose();
+  }
 };
 
 PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   const Vec3 x(s.x(), s.y(), 0.0);
   const Vec3 from_c2 = x - pair.c;
   const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));  // x in disk 2's plane
-  const double rho = y.norm();
+  const double rho_squared = y.squaredNorm();
   PointToDisk2 out;
-  // m2 = in-plane (frame 1) part of n2: the Hessian of height^2/2 over plane 2.
-  const Vec2 m2(pair.R(0, 2), pair.R(1, 2));
-  if (rho <= pair.r2) {  // x projects into disk 2's face
+  if (rho_squared <= pair.r2 * pair.r2) {  // x projects into disk 2's face
     out.q = pair.c + y.x() * pair.R.col(0) + y.y() * pair.R.col(1);
-    out.hessian = m2 * m2.transpose();
+    // m2 = in-plane (frame 1) part of n2: the Hessian of height^2/2 over plane 2.
+    out.hessian_identity = 0.0;
+    out.hessian_rank_one = 1.0;
+    out.hessian_direction = Vec2(pair.R(0, 2), pair.R(1, 2));
   } else {  // nearest point on disk 2's rim, radial direction e
-    const Vec3 e = (y.x() / rho) * pair.R.col(0) + (y.y() / rho) * pair.R.col(1);
+    const double inverse_rho = 1.0 / std::sqrt(rho_squared);
+    const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
     out.q = pair.c + pair.r2 * e;
     // Hessian of dist^2/2 to a circle's disk outside it: I - (r2/rho) t t^T, t = n2 x e.
     const Vec3 t = pair.R.col(2).cross(e);
-    const Vec2 t_xy(t.x(), t.y());
-    out.hessian = Eigen::Matrix2d::Identity() - (pair.r2 / rho) * t_xy * t_xy.transpose();
+    out.hessian_identity = 1.0;
+    out.hessian_rank_one = -pair.r2 * inverse_rho;
+    out.hessian_direction = Vec2(t.x(), t.y());
   }
   const Vec3 residual = x - out.q;
   out.psi = 0.5 * residual.squaredNorm();
@@ -297,8 +314,12 @@ Vec2 stepOnDisk(const Eigen::Matrix2d& H, const Vec2& g, const Vec2& s, double r
 Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound) {
   const double r1 = pair.r1;
   // Start on the rim, towards disk 2's centre (the optimum is on the rim).
+  // `radial` is s's direction while s is on the rim (s == r1 * radial), carried
+  // from step to step so that rim iterations need no normalisation.
   const double c_xy = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
-  Vec2 s = c_xy > 0.0 ? Vec2(pair.c.x() * (r1 / c_xy), pair.c.y() * (r1 / c_xy)) : Vec2(r1, 0.0);
+  Vec2 radial = c_xy > 0.0 ? Vec2(pair.c.x(), pair.c.y()) * (1.0 / c_xy) : Vec2(1.0, 0.0);
+  Vec2 s = r1 * radial;
+  bool s_on_rim = true;
   PointToDisk2 at = evaluate(pair, s);
   const double gap_tolerance = kGapTolerance * scale;
   const double certify_below = kCertifyStep * scale;
@@ -315,30 +336,40 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     return current;
   };
   for (int iteration = 1; iteration <= kMaxNewtonIterations; ++iteration) {
-    const double radius = s.norm();
-    const Vec2 radial = s / radius;  // |s| > 0: iterates stay near the rim or inside it
+    bool near_rim = s_on_rim;
+    if (!s_on_rim) {  // after a model step: |s| > 0, iterates stay near the rim or inside it
+      const double radius = s.norm();
+      radial = s * (1.0 / radius);
+      near_rim = radius >= r1 * (1.0 - kOnRimTolerance);
+    }
     const Vec2 tangent(-radial.y(), radial.x());
-    // Multiplier of |s| <= r1: lambda >= 0 iff -gradient points out of the disk.
-    const double lambda = -at.gradient.dot(radial) / r1;
-    const bool on_rim = radius >= r1 * (1.0 - kOnRimTolerance) &&
-                        lambda >= -kInwardGradientTolerance * at.gradient.norm() / r1;
+    // Multiplier of |s| <= r1: lambda = outward / r1 >= 0 iff -gradient points
+    // out of the disk; slightly negative within kInwardGradientTolerance * |g|
+    // (compared squared: no square root).
+    const double outward = -at.gradient.dot(radial);
+    const bool on_rim =
+        near_rim && (outward >= 0.0 || outward * outward <= kInwardGradientTolerance *
+                                                                 kInwardGradientTolerance *
+                                                                 at.gradient.squaredNorm());
     double dtheta = 0.0;
     double predicted_decrease = 0.0;  // of psi, by the rim Newton step
     if (on_rim) {
       // Newton in the rim angle theta: psi' = r1 g.t, psi'' = r1^2 (t'Ht + lambda).
       const double slope = r1 * at.gradient.dot(tangent);
       const double curvature =
-          r1 * r1 * (tangent.dot(at.hessian * tangent) + std::max(lambda, 0.0));
+          r1 * (r1 * at.curvatureAlong(tangent) + std::max(outward, 0.0));
       dtheta = curvature > 0.0 ? -slope / curvature : -std::copysign(kMaxRimStep, slope);
       dtheta = std::clamp(dtheta, -kMaxRimStep, kMaxRimStep);
       predicted_decrease = 0.5 * std::abs(slope * dtheta);
     }
     // Certify once the iteration has (nearly) converged: Newton converges
     // quadratically, so the gap closes within a step or two of here. Not while
-    // the step is predicted to shorten the distance by more than the tolerance
-    // (d psi = d dd): the gap is at least that, so the certificate would fail.
-    const bool converging = std::abs(dtheta) * r1 <= certify_below &&
-                            predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
+    // the step is predicted to shorten the distance d by more than the
+    // tolerance (d psi = d dd, compared squared): the gap is at least that, so
+    // the certificate would fail.
+    const bool converging =
+        std::abs(dtheta) * r1 <= certify_below &&
+        predicted_decrease * predicted_decrease <= 2.0 * at.psi * gap_tolerance * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
       const double lower = std::max(face_lower_bound, separationLowerBound(pair, at.q - x));
@@ -352,23 +383,32 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     }
     PointToDisk2 next;
     Vec2 s_next;
+    Vec2 radial_next;
     bool moved = false;
     if (on_rim) {
-      // Rotate by atan(dtheta): normalising s + dtheta r1 t costs no trigonometry
-      // and agrees with the rotation to third order, which keeps Newton quadratic.
+      // Rotate by 2 atan(dtheta / 2): the rational (Cayley) rotation
+      // ((1 - h^2) radial + 2h tangent) / (1 + h^2), h = dtheta / 2, is unit to
+      // rounding and agrees with the rotation by dtheta to third order (which
+      // keeps Newton quadratic) at the cost of one division: no trigonometry,
+      // no square root.
       for (int halving = 0; halving < kMaxRimHalvings && !moved; ++halving, dtheta *= 0.5) {
-        const Vec2 turned = radial + dtheta * tangent;
-        s_next = turned * (r1 / turned.norm());
+        const double h = 0.5 * dtheta;
+        const double inverse = 1.0 / (1.0 + h * h);
+        radial_next = ((1.0 - h * h) * inverse) * radial + (2.0 * h * inverse) * tangent;
+        s_next = r1 * radial_next;
         next = evaluate(pair, s_next);
         moved = next.psi < at.psi;
       }
+      if (moved) radial = radial_next;
+      s_on_rim = moved;
     }
     if (!moved) {
-      const Vec2 step = stepOnDisk(at.hessian, at.gradient, s, r1);
+      const Vec2 step = stepOnDisk(at.hessian(), at.gradient, s, r1);
       const double slope = at.gradient.dot(step);
       if (!(slope < 0.0)) break;  // stationary to rounding
       s_next = s + exactLineSearch(pair, s, step, slope, &next);
       moved = next.psi < at.psi;
+      s_on_rim = false;
     }
     if (!moved) break;  // no representable decrease: rounding floor
     const double decrease = at.psi - next.psi;
