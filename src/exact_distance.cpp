@@ -317,7 +317,8 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   // `radial` is s's direction while s is on the rim (s == r1 * radial), carried
   // from step to step so that rim iterations need no normalisation.
   const double c_xy = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
-  Vec2 radial = c_xy > 0.0 ? Vec2(pair.c.x(), pair.c.y()) * (1.0 / c_xy) : Vec2(1.0, 0.0);
+  // Divided per component, not by a reciprocal: 1 / c_xy overflows for subnormal c_xy.
+  Vec2 radial = c_xy > 0.0 ? Vec2(pair.c.x() / c_xy, pair.c.y() / c_xy) : Vec2(1.0, 0.0);
   Vec2 s = r1 * radial;
   bool s_on_rim = true;
   PointToDisk2 at = evaluate(pair, s);
@@ -339,7 +340,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     bool near_rim = s_on_rim;
     if (!s_on_rim) {  // after a model step: |s| > 0, iterates stay near the rim or inside it
       const double radius = s.norm();
-      radial = s * (1.0 / radius);
+      radial = s / radius;
       near_rim = radius >= r1 * (1.0 - kOnRimTolerance);
     }
     const Vec2 tangent(-radial.y(), radial.x());
