@@ -7,8 +7,9 @@
 // per entry point (docs/fcl_hook.md, "Build time"). The same holds, in float
 // and double, for the lookup tables behind the overloads that take a solver.
 // libfcl_disk compiles all of these anyway (its hook patches those tables), so
-// it provides explicit instantiations and this header declares them, as FCL
-// does for its double entry points; fcl_disk/disk.h includes it.
+// it provides explicit instantiations (src/fcl_templates_float.cpp,
+// src/fcl_templates_double.cpp) and this header declares them, as FCL does for
+// its double entry points; fcl_disk/disk.h includes it.
 //
 // Include it before a translation unit's first use of these templates (C++
 // requires the declaration to precede the implicit instantiation); including
@@ -45,22 +46,20 @@ extern template std::size_t collide(const CollisionGeometry<float>* o1,
                                     const CollisionRequest<float>& request,
                                     CollisionResult<float>& result);
 
-extern template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>&
-getDistanceFunctionLookTable<detail::GJKSolver_libccd<float>>();
-extern template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>&
-getDistanceFunctionLookTable<detail::GJKSolver_indep<float>>();
-extern template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<double>>&
-getDistanceFunctionLookTable<detail::GJKSolver_libccd<double>>();
-extern template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<double>>&
-getDistanceFunctionLookTable<detail::GJKSolver_indep<double>>();
+// The lookup tables (FCL's dispatch matrices) and their accessors, per solver.
+#define FCL_DISK_DECLARE_FCL_TABLES(Solver)                                        \
+  extern template struct detail::DistanceFunctionMatrix<Solver>;                   \
+  extern template struct detail::CollisionFunctionMatrix<Solver>;                  \
+  extern template detail::DistanceFunctionMatrix<Solver>&                          \
+  getDistanceFunctionLookTable<Solver>();                                          \
+  extern template detail::CollisionFunctionMatrix<Solver>&                         \
+  getCollisionFunctionLookTable<Solver>();
 
-extern template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>&
-getCollisionFunctionLookTable<detail::GJKSolver_libccd<float>>();
-extern template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>&
-getCollisionFunctionLookTable<detail::GJKSolver_indep<float>>();
-extern template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<double>>&
-getCollisionFunctionLookTable<detail::GJKSolver_libccd<double>>();
-extern template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<double>>&
-getCollisionFunctionLookTable<detail::GJKSolver_indep<double>>();
+FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_libccd<float>)
+FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_indep<float>)
+FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_libccd<double>)
+FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_indep<double>)
+
+#undef FCL_DISK_DECLARE_FCL_TABLES
 
 }  // namespace fcl

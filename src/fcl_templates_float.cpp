@@ -1,0 +1,40 @@
+// FCL's float templates, compiled once for every user of fcl_disk: the entry
+// points fcl::distance / fcl::collide and the dispatch tables of both GJK
+// solvers (declared in fcl_disk/fcl_templates.h, which explains why). Float
+// and double live in separate files so that a parallel build compiles them side
+// by side: each is one of the two longest compilations in the project.
+#include "fcl_disk/fcl_templates.h"
+
+namespace fcl {
+
+template float distance(const CollisionObject<float>* o1, const CollisionObject<float>* o2,
+                        const DistanceRequest<float>& request, DistanceResult<float>& result);
+
+template float distance(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
+                        const CollisionGeometry<float>* o2, const Transform3<float>& tf2,
+                        const DistanceRequest<float>& request, DistanceResult<float>& result);
+
+template std::size_t collide(const CollisionObject<float>* o1, const CollisionObject<float>* o2,
+                             const CollisionRequest<float>& request,
+                             CollisionResult<float>& result);
+
+template std::size_t collide(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
+                             const CollisionGeometry<float>* o2, const Transform3<float>& tf2,
+                             const CollisionRequest<float>& request,
+                             CollisionResult<float>& result);
+
+template struct detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>;
+template struct detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>;
+template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>&
+getDistanceFunctionLookTable<detail::GJKSolver_libccd<float>>();
+template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>&
+getCollisionFunctionLookTable<detail::GJKSolver_libccd<float>>();
+
+template struct detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>;
+template struct detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>;
+template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>&
+getDistanceFunctionLookTable<detail::GJKSolver_indep<float>>();
+template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>&
+getCollisionFunctionLookTable<detail::GJKSolver_indep<float>>();
+
+}  // namespace fcl
