@@ -394,7 +394,8 @@ struct SceneWithNaNDisk {
   }
 };
 
-// The tree must not crash or hang; collide finds only pairs of valid disks.
+// The tree must not crash or hang; collide finds only pairs of valid disks, with
+// finite contacts.
 // distance: the scene's nearest distance is NaN if the NaN disk was queried
 // (DistanceResult keeps NaN), else the minimum over the pairs that were: never a
 // distance that some queried pair does not have.
@@ -403,6 +404,9 @@ TYPED_TEST(Robustness, BroadphaseWithNaNDiskTerminates) {
   SceneWithNaNDisk<S> scene(9);
   fcl::DefaultCollisionData<S> collision;
   collision.request.num_max_contacts = 100;
+  // Without enable_contact FCL's contacts carry no position (its Contact
+  // constructor leaves pos and normal uninitialised, for every shape pair).
+  collision.request.enable_contact = true;
   scene.manager.collide(&collision, fcl::DefaultCollisionFunction<S>);
   std::vector<fcl::Contact<S>> contacts;
   collision.result.getContacts(contacts);
