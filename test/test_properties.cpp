@@ -10,6 +10,10 @@
 // are collected per property and reported once, with the worst pose in full
 // precision, so a systematic bug does not print 1e5 lines.
 //
+// Half of the poses are scaled by 10^-90..10^90 (float: 10^-30..10^30), and the
+// tolerances are relative to the scene size with no floor: relative accuracy
+// is checked at every length scale.
+//
 // Pose count: FCL_DISK_PROPERTY_POSES in the environment, else kReleasePoses
 // (NDEBUG) or kDebugPoses. Seeds are fixed: every run checks the same poses.
 #include <fcl_disk/almohamad_selim.h>
@@ -32,6 +36,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "test_random.h"
@@ -149,7 +154,14 @@ Pose3d makePose(const Matrix3d& R, const Vector3d& c) {
   return X;
 }
 
-PosedPair<double> generatePair(long index, Random& random) {
+/// Half of the pairs are drawn at unit size and then scaled, all lengths alike
+/// (radii, centres, the common motion's translation), by 10^x with x uniform
+/// in [-max_length_exponent, max_length_exponent]: the solvers' bounds are
+/// relative, so every property must hold at any size in the supported range.
+template <typename S>
+constexpr double kMaxLengthExponent = std::is_same<S, float>::value ? 30 : 90;
+
+PosedPair<double> generatePair(long index, Random& random, double max_length_exponent) {
   PosedPair<double> pair;
   pair.index = index;
   pair.family = familyOfIndex(index);
@@ -222,6 +234,16 @@ PosedPair<double> generatePair(long index, Random& random) {
 
   const Matrix3d motion_rotation = random.rotation();
   pair.X_MW = makePose(motion_rotation, random.inBall(5.0));
+
+  const bool scaled = random.chance(0.5);
+  const double length = std::pow(10.0, random.uniform(-max_length_exponent, max_length_exponent));
+  if (scaled) {
+    pair.r1 *= length;
+    pair.r2 *= length;
+    pair.X_W1.translation() *= length;
+    pair.X_W2.translation() *= length;
+    pair.X_MW.translation() *= length;
+  }
   return pair;
 }
 
@@ -244,7 +266,9 @@ std::vector<PosedPair<S>> generatePairs(long count) {
   Random random(kPoseSeed);
   std::vector<PosedPair<S>> pairs;
   pairs.reserve(count);
-  for (long i = 0; i < count; ++i) pairs.push_back(roundedTo<S>(generatePair(i, random)));
+  for (long i = 0; i < count; ++i) {
+    pairs.push_back(roundedTo<S>(generatePair(i, random, kMaxLengthExponent<S>)));
+  }
   return pairs;
 }
 

@@ -16,12 +16,13 @@
 namespace fcl_disk_test {
 
 /// The length that relative tolerances scale with:
-/// max(1, r1 + r2 + |c1 - c2|, |c1|, |c2|). The solvers' documented bounds are
-/// relative to max(1, r1 + r2 + |c1 - c2|); |c_i| is included because points
-/// stored in world coordinates carry ulp(|c_i|) of rounding (exact_distance.h).
+/// max(r1 + r2 + |c1 - c2|, |c1|, |c2|). The solvers' documented bounds are
+/// relative to r1 + r2 + |c1 - c2|, with no floor (so they are tested at every
+/// length scale); |c_i| is included because points stored in world coordinates
+/// carry ulp(|c_i|) of rounding (exact_distance.h).
 inline double sceneSize(double r1, double r2, double centre_gap, double c1_norm,
                         double c2_norm) {
-  return std::max({1.0, r1 + r2 + centre_gap, c1_norm, c2_norm});
+  return std::max({r1 + r2 + centre_gap, c1_norm, c2_norm});
 }
 
 template <typename S>
