@@ -24,8 +24,9 @@ namespace fcl_disk {
 /// if the gap stays open, a global search along disk 1's rim as fallback.
 ///
 /// Guarantee (double): |distance - d_true| <= 1e-12 * (r1 + r2 + |c1 - c2|): relative,
-/// at every length scale in range (kMinDiskRadius..kMaxDiskLength; tested for
-/// radii 1e-9..1e9, coordinates up to 1e9, and by fuzzing over the whole range),
+/// at every length scale in range (kMinDiskRadius..kMaxDiskLength; tested
+/// against a long-double reference for radii 1e-9..1e9 and coordinates up to 1e9,
+/// by property tests at scales 1e-90..1e90, and by fuzzing over the whole range),
 /// and both points lie on their disks to the same bound plus the rounding of
 /// storing them in world coordinates (ulp(|c_i|)); distance == |p_W2 - p_W1| up
 /// to that rounding. lower_bound is the duality certificate (at the returned
@@ -37,7 +38,8 @@ namespace fcl_disk {
 /// the gap may reach about (r1 + r2) (sqrt(eps) + 8 eps scale / d) while
 /// the distance still meets the bound above (eps of the scalar type).
 /// Float: inputs are promoted to double, results rounded to float, so the bound
-/// is a few float ulps of max(1, r1 + r2 + |c1 - c2|, |c_i|).
+/// is a few float ulps of max(r1 + r2 + |c1 - c2|, |c_i|) (property tests at
+/// scales 1e-30..1e30).
 ///
 /// Degenerate cases and tie-breaks (the optimum is unique in distance, not
 /// always in points):
