@@ -366,11 +366,11 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     // Certify once the iteration has (nearly) converged: Newton converges
     // quadratically, so the gap closes within a step or two of here. Not while
     // the step is predicted to shorten the distance d by more than the
-    // tolerance (d psi = d dd, compared squared): the gap is at least that, so
-    // the certificate would fail.
-    const bool converging =
-        std::abs(dtheta) * r1 <= certify_below &&
-        predicted_decrease * predicted_decrease <= 2.0 * at.psi * gap_tolerance * gap_tolerance;
+    // tolerance (d psi = d dd): the gap is at least that, so the certificate
+    // would fail. (Not compared squared: that would be a fourth power of
+    // lengths, outside double's range at the ends of the length range.)
+    const bool converging = std::abs(dtheta) * r1 <= certify_below &&
+                            predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
       const double lower = std::max(face_lower_bound, separationLowerBound(pair, at.q - x));
