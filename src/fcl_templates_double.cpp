@@ -6,18 +6,7 @@
 
 namespace fcl {
 
-template struct detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<double>>;
-template struct detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<double>>;
-template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<double>>&
-getDistanceFunctionLookTable<detail::GJKSolver_libccd<double>>();
-template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<double>>&
-getCollisionFunctionLookTable<detail::GJKSolver_libccd<double>>();
-
-template struct detail::DistanceFunctionMatrix<detail::GJKSolver_indep<double>>;
-template struct detail::CollisionFunctionMatrix<detail::GJKSolver_indep<double>>;
-template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<double>>&
-getDistanceFunctionLookTable<detail::GJKSolver_indep<double>>();
-template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<double>>&
-getCollisionFunctionLookTable<detail::GJKSolver_indep<double>>();
+FCL_DISK_FCL_TABLES(, detail::GJKSolver_libccd<double>)
+FCL_DISK_FCL_TABLES(, detail::GJKSolver_indep<double>)
 
 }  // namespace fcl

@@ -23,18 +23,7 @@ template std::size_t collide(const CollisionGeometry<float>* o1, const Transform
                              const CollisionRequest<float>& request,
                              CollisionResult<float>& result);
 
-template struct detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>;
-template struct detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>;
-template detail::DistanceFunctionMatrix<detail::GJKSolver_libccd<float>>&
-getDistanceFunctionLookTable<detail::GJKSolver_libccd<float>>();
-template detail::CollisionFunctionMatrix<detail::GJKSolver_libccd<float>>&
-getCollisionFunctionLookTable<detail::GJKSolver_libccd<float>>();
-
-template struct detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>;
-template struct detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>;
-template detail::DistanceFunctionMatrix<detail::GJKSolver_indep<float>>&
-getDistanceFunctionLookTable<detail::GJKSolver_indep<float>>();
-template detail::CollisionFunctionMatrix<detail::GJKSolver_indep<float>>&
-getCollisionFunctionLookTable<detail::GJKSolver_indep<float>>();
+FCL_DISK_FCL_TABLES(, detail::GJKSolver_libccd<float>)
+FCL_DISK_FCL_TABLES(, detail::GJKSolver_indep<float>)
 
 }  // namespace fcl

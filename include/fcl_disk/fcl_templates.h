@@ -47,19 +47,19 @@ extern template std::size_t collide(const CollisionGeometry<float>* o1,
                                     CollisionResult<float>& result);
 
 // The lookup tables (FCL's dispatch matrices) and their accessors, per solver.
-#define FCL_DISK_DECLARE_FCL_TABLES(Solver)                                        \
-  extern template struct detail::DistanceFunctionMatrix<Solver>;                   \
-  extern template struct detail::CollisionFunctionMatrix<Solver>;                  \
-  extern template detail::DistanceFunctionMatrix<Solver>&                          \
+// One macro for the declarations here and the definitions in src/ (`storage`
+// is `extern` here and empty there), so the two lists cannot drift apart.
+#define FCL_DISK_FCL_TABLES(storage, Solver)                                       \
+  storage template struct detail::DistanceFunctionMatrix<Solver>;                  \
+  storage template struct detail::CollisionFunctionMatrix<Solver>;                 \
+  storage template detail::DistanceFunctionMatrix<Solver>&                         \
   getDistanceFunctionLookTable<Solver>();                                          \
-  extern template detail::CollisionFunctionMatrix<Solver>&                         \
+  storage template detail::CollisionFunctionMatrix<Solver>&                        \
   getCollisionFunctionLookTable<Solver>();
 
-FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_libccd<float>)
-FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_indep<float>)
-FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_libccd<double>)
-FCL_DISK_DECLARE_FCL_TABLES(detail::GJKSolver_indep<double>)
-
-#undef FCL_DISK_DECLARE_FCL_TABLES
+FCL_DISK_FCL_TABLES(extern, detail::GJKSolver_libccd<float>)
+FCL_DISK_FCL_TABLES(extern, detail::GJKSolver_indep<float>)
+FCL_DISK_FCL_TABLES(extern, detail::GJKSolver_libccd<double>)
+FCL_DISK_FCL_TABLES(extern, detail::GJKSolver_indep<double>)
 
 }  // namespace fcl
