@@ -52,6 +52,12 @@ constexpr int kMaxRimHalvings = 8;
 /// scene sizes (then the gap is at most about its square), or off the rim.
 constexpr double kCertifyStep = 1e-6;
 
+/// The rim iteration's start uses disk 2's geometry over plane 1 only for
+/// planes at least this far (sine of the angle, ~6 degrees) from parallel: the
+/// start point divides by s. Fewer iterations for any value in 0.01-0.3 on
+/// every family of test/disk_families.h (docs/exact_distance.md, section 4).
+constexpr double kTiltedStart = 0.1;
+
 /// The global rim search (rimSearch) runs when Newton ends with a certified gap
 /// above kFallbackGap * scale (well above the certificate's own rounding, so
 /// only genuinely unconverged pairs pay for it): kRimSamples samples, the
@@ -67,6 +73,17 @@ constexpr int kMaxRimSearchIterations = 80;
 /// cap are flat, near-degenerate optima, handed to the rim search when their
 /// certificate is still open (docs/exact_distance.md, section 4).
 constexpr int kMaxNewtonIterations = 16;
+
+/// (cos, sin) of the rim step by the angle dtheta, as the rational (Cayley)
+/// rotation ((1 - h^2), 2h) / (1 + h^2) with h = dtheta / 2: the rotation by
+/// 2 atan(dtheta / 2), unit to rounding, which agrees with the rotation by
+/// dtheta to third order (so Newton stays quadratic) at the cost of one
+/// division: no trigonometry, no square root.
+Vec2 cayleyRotation(double dtheta) {
+  const double h = 0.5 * dtheta;
+  const double inverse = 1.0 / (1.0 + h * h);
+  return Vec2((1.0 - h * h) * inverse, 2.0 * h * inverse);
+}
 
 /// Exact line search along a Newton step (regula falsi on psi'): at most
 /// kMaxLineSearchSteps evaluations, stopping when psi' has fallen below
@@ -120,8 +137,7 @@ std::optional<Solution> faceOfDisk1(const PairInFrame1& pair, double scale) {
   const double side = cz > 0.0 ? 1.0 : -1.0;
   Vec3 q;
   if (pair.s > 0.0) {
-    // Rim point of disk 2 extreme towards plane 1: direction -side * m / s.
-    q = pair.pointOfDisk2((-side * pair.r2 / pair.s) * pair.m);
+    q = pair.rimPointTowardsPlane1();
     q.z() = side * lowest_height;  // exact height, free of the rotation's rounding
   } else {
     const auto overlap = overlapOfProjections(pair);
@@ -193,7 +209,10 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
     out.hessian_rank_one = 1.0;
     out.hessian_direction = Vec2(pair.R(0, 2), pair.R(1, 2));
   } else {  // nearest point on disk 2's rim, radial direction e
-    const double inverse_rho = 1.0 / std::sqrt(rho_squared);
+    // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division
+    // run side by side instead of one after the other (this is on the rim
+    // iteration's critical path).
+    const double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
     const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
     out.q = pair.c + pair.r2 * e;
     // Hessian of dist^2/2 to a circle's disk outside it: I - (r2/rho) t t^T, t = n2 x e.
@@ -301,6 +320,35 @@ Vec2 stepOnDisk(const Eigen::Matrix2d& H, const Vec2& g, const Vec2& s, double r
   return best;
 }
 
+/// The direction of v, or (1, 0) for v = 0. Divided per component, not by a
+/// reciprocal: 1 / |v| overflows for subnormal |v|.
+Vec2 directionOf(const Vec2& v) {
+  const double length = v.norm();
+  return length > 0.0 ? Vec2(v.x() / length, v.y() / length) : Vec2(1.0, 0.0);
+}
+
+/// Where the rim iteration starts (only its speed depends on it; measured in
+/// docs/exact_distance.md, section 4): disk 1's rim point towards where disk 2
+/// comes nearest plane 1, projected: the point of disk 2's chord on plane 1
+/// nearest c1 when disk 2 crosses plane 1, else disk 2's rim point extreme
+/// towards plane 1. Towards c2's projection instead when disk 1 crosses plane 2
+/// but disk 2 does not cross plane 1 (there that start is better), and for
+/// planes within kTiltedStart (sine) of parallel, where the point is
+/// ill-conditioned (it divides by s).
+Vec2 rimStartDirection(const PairInFrame1& pair) {
+  const Vec2 towards_c2(pair.c.x(), pair.c.y());
+  if (!(pair.s > kTiltedStart)) return directionOf(towards_c2);
+  if (std::abs(pair.c.z()) <= pair.r2 * pair.s) {  // disk 2 crosses plane 1
+    const internal::ChordOnPlane1 chord = internal::chordOfDisk2OnPlane1(pair);
+    const double tau =
+        std::clamp(chord.tau_nearest_c1, -chord.half_length, chord.half_length);
+    return directionOf(Vec2(chord.X0.x() + tau * chord.T.x(), chord.X0.y() + tau * chord.T.y()));
+  }
+  if (std::abs(pair.R.col(2).dot(pair.c)) <= pair.r1 * pair.s) return directionOf(towards_c2);
+  const Vec3 towards_plane1 = pair.rimPointTowardsPlane1();
+  return directionOf(Vec2(towards_plane1.x(), towards_plane1.y()));
+}
+
 /// Rim-rim case: minimise the convex psi(s) = dist(x(s), K2)^2 / 2 over disk 1
 /// (|s| <= r1). On the rim with a non-negative multiplier (the usual case) Newton
 /// runs along the rim in the angle, with the rim's curvature lambda in the
@@ -316,9 +364,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   // Start on the rim, towards disk 2's centre (the optimum is on the rim).
   // `radial` is s's direction while s is on the rim (s == r1 * radial), carried
   // from step to step so that rim iterations need no normalisation.
-  const double c_xy = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
-  // Divided per component, not by a reciprocal: 1 / c_xy overflows for subnormal c_xy.
-  Vec2 radial = c_xy > 0.0 ? Vec2(pair.c.x() / c_xy, pair.c.y() / c_xy) : Vec2(1.0, 0.0);
+  Vec2 radial = rimStartDirection(pair);
   Vec2 s = r1 * radial;
   bool s_on_rim = true;
   PointToDisk2 at = evaluate(pair, s);
@@ -354,14 +400,31 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
                                                                  at.gradient.squaredNorm());
     double dtheta = 0.0;
     double predicted_decrease = 0.0;  // of psi, by the rim Newton step
+    Vec2 rotation(1.0, 0.0);          // (cos, sin) of the first rim step tried
     if (on_rim) {
-      // Newton in the rim angle theta: psi' = r1 g.t, psi'' = r1^2 (t'Ht + lambda).
-      const double slope = r1 * at.gradient.dot(tangent);
-      const double curvature =
-          r1 * (r1 * at.curvatureAlong(tangent) + std::max(outward, 0.0));
-      dtheta = curvature > 0.0 ? -slope / curvature : -std::copysign(kMaxRimStep, slope);
-      dtheta = std::clamp(dtheta, -kMaxRimStep, kMaxRimStep);
-      predicted_decrease = 0.5 * std::abs(slope * dtheta);
+      // Newton in the rim angle theta: psi' = r1 sigma, psi'' = r1 kappa with
+      // sigma = g.t and kappa = r1 t'Ht + lambda r1 (both lengths), so
+      // dtheta = -sigma / kappa.
+      const double sigma = at.gradient.dot(tangent);
+      const double kappa = r1 * at.curvatureAlong(tangent) + std::max(outward, 0.0);
+      // The Cayley rotation of h = dtheta / 2 = -sigma / (2 kappa), written over
+      // the common denominator 4 kappa^2 + sigma^2: its division is independent
+      // of dtheta's, so the two run side by side (squares of lengths stay in
+      // double's range over the whole length range).
+      const double four_kappa_squared = 4.0 * kappa * kappa;
+      const double denominator = four_kappa_squared + sigma * sigma;
+      if (kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
+          denominator >= std::numeric_limits<double>::min()) {
+        dtheta = -sigma / kappa;
+        const double inverse = 1.0 / denominator;
+        rotation = Vec2((four_kappa_squared - sigma * sigma) * inverse,
+                        -4.0 * sigma * kappa * inverse);
+      } else {  // step clamped to kMaxRimStep, or no positive curvature
+        dtheta = kappa > 0.0 ? -sigma / kappa : -std::copysign(kMaxRimStep, sigma);
+        dtheta = std::clamp(dtheta, -kMaxRimStep, kMaxRimStep);
+        rotation = cayleyRotation(dtheta);
+      }
+      predicted_decrease = 0.5 * r1 * std::abs(sigma * dtheta);
     }
     // Certify once the iteration has (nearly) converged: Newton converges
     // quadratically, so the gap closes within a step or two of here. Not while
@@ -387,15 +450,11 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     Vec2 radial_next;
     bool moved = false;
     if (on_rim) {
-      // Rotate by 2 atan(dtheta / 2): the rational (Cayley) rotation
-      // ((1 - h^2) radial + 2h tangent) / (1 + h^2), h = dtheta / 2, is unit to
-      // rounding and agrees with the rotation by dtheta to third order (which
-      // keeps Newton quadratic) at the cost of one division: no trigonometry,
-      // no square root.
+      // Rotate by the Cayley rotation of dtheta (cayleyRotation); halve the
+      // step while psi does not decrease.
       for (int halving = 0; halving < kMaxRimHalvings && !moved; ++halving, dtheta *= 0.5) {
-        const double h = 0.5 * dtheta;
-        const double inverse = 1.0 / (1.0 + h * h);
-        radial_next = ((1.0 - h * h) * inverse) * radial + (2.0 * h * inverse) * tangent;
+        if (halving > 0) rotation = cayleyRotation(dtheta);
+        radial_next = rotation.x() * radial + rotation.y() * tangent;
         s_next = r1 * radial_next;
         next = evaluate(pair, s_next);
         moved = next.psi < at.psi;
@@ -491,12 +550,15 @@ Solution solveInFrame1(const PairInFrame1& pair) {
     face1->lower_bound = face_lower_bound;
     return *face1;
   }
-  const PairInFrame1 seen_from_2 = pair.swapped();
-  if (auto face2 = faceOfDisk1(seen_from_2, scale)) {
-    // Map back from disk 2's frame: x_1 = c + R x_2.
-    const Vec3 p = pair.c + pair.R * face2->q;
-    const Vec3 q = pair.c + pair.R * face2->p;
-    return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
+  // Disk 2's face case needs disk 1 wholly on one side of plane 2 (the first
+  // test of faceOfDisk1 seen from disk 2), checked before building that view.
+  if (std::abs(pair.R.col(2).dot(pair.c)) > pair.r1 * pair.s) {
+    if (auto face2 = faceOfDisk1(pair.swapped(), scale)) {
+      // Map back from disk 2's frame: x_1 = c + R x_2.
+      const Vec3 p = pair.c + pair.R * face2->q;
+      const Vec3 q = pair.c + pair.R * face2->p;
+      return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
+    }
   }
   Solution newton = rimRim(pair, scale, face_lower_bound);
   if (newton.distance - newton.lower_bound > kFallbackGap * scale) {

@@ -80,6 +80,13 @@ struct PairInFrame1 {
   /// Maps a point of disk-2-in-plane coordinates (a, b) to frame 1.
   Vec3 pointOfDisk2(const Vec2& ab) const { return c + ab.x() * R.col(0) + ab.y() * R.col(1); }
 
+  /// The rim point of disk 2 extreme towards plane 1 (lowest if c is above
+  /// it): direction -sign(c_z) m / s in disk 2's plane. Requires s > 0.
+  Vec3 rimPointTowardsPlane1() const {
+    const double side = c.z() > 0.0 ? 1.0 : -1.0;
+    return pointOfDisk2((-side * r2 / s) * m);
+  }
+
   /// The in-plane point at signed distance t from c1 towards disk 2's centre's
   /// projection (c1 itself if the centres are coaxial): where coplanar or
   /// parallel overlaps are reported.
@@ -114,12 +121,45 @@ inline std::optional<double> coplanarOverlapMidpoint(double D, double r1, double
 /// promise; the common point is then on both disks to this tolerance.
 constexpr double kTouchingTolerance = 1e-13;
 
+/// The chord where disk 2 meets plane 1: X(tau) = X0 + tau T for |tau| <=
+/// half_length, T horizontal and unit to rounding (frame 1).
+struct ChordOnPlane1 {
+  Vec3 X0;                ///< the chord's midpoint.
+  Vec3 T;                 ///< its direction.
+  double half_length;
+  double tau_nearest_c1;  ///< parameter of the chord's line's point nearest c1.
+};
+
+/// For s > 0 and disk 2 crossing plane 1 (|c_z| <= r2 s, up to a slack that
+/// the clamping below absorbs). In disk 2's (a, b) coordinates the chord's line
+/// is m.(a, b) = -c_z: foot f = -c_z m / s^2 (clamped to the disk), direction
+/// perp(m) / s.
+inline ChordOnPlane1 chordOfDisk2OnPlane1(const PairInFrame1& pair) {
+  Vec2 foot = (-pair.c.z() / (pair.s * pair.s)) * pair.m;
+  const double foot_norm = foot.norm();
+  if (foot_norm > pair.r2) foot *= pair.r2 / foot_norm;
+  const Vec2 along(-pair.m.y() / pair.s, pair.m.x() / pair.s);
+  ChordOnPlane1 chord;
+  chord.half_length =
+      std::sqrt(std::max(0.0, (pair.r2 - foot_norm) * (pair.r2 + foot_norm)));
+  chord.X0 = pair.pointOfDisk2(foot);
+  chord.T = along.x() * pair.R.col(0) + along.y() * pair.R.col(1);
+  const Vec2 T_xy(chord.T.x(), chord.T.y());
+  chord.tau_nearest_c1 = -Vec2(chord.X0.x(), chord.X0.y()).dot(T_xy) / T_xy.squaredNorm();
+  return chord;
+}
+
 /// A point shared by both disks (frame 1), or nullopt if they are apart by more
 /// than kTouchingTolerance * pair.scale().
 /// Crossing planes: the two chords on the planes' intersection line; parallel
 /// planes (s == 0): coplanar overlap along the line of centres.
 inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
   const double slack = kTouchingTolerance * pair.scale();
+  // Each disk lies in the ball of its radius about its centre: centres farther
+  // apart than r1 + r2 (+ slack) leave no common point, at the cost of a dot
+  // product (squares of lengths stay in double's range over the length range).
+  const double reach = pair.r1 + pair.r2 + slack;
+  if (!(pair.c.squaredNorm() <= reach * reach)) return std::nullopt;  // also NaN
   const double cz = pair.c.z();
   // Disk 2 spans heights [cz - r2 s, cz + r2 s] over plane 1.
   if (!(std::abs(cz) <= pair.r2 * pair.s + slack)) return std::nullopt;  // also NaN
@@ -132,29 +172,18 @@ inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
     const Vec2 point = pair.pointOnCentreLine(std::clamp(*t, -pair.r1, pair.r1));
     return Vec3(point.x(), point.y(), 0.5 * cz);
   }
-  // Chord of disk 2 on plane 1, in disk 2's (a, b) coordinates: the line
-  // m.(a, b) = -cz, foot f = -cz m / s^2 (|f| <= r2 + slack/s, clamped to the
-  // disk), direction t = perp(m) / s, half-length h2.
-  Vec2 foot = (-cz / (pair.s * pair.s)) * pair.m;
-  const double foot_norm = foot.norm();
-  if (foot_norm > pair.r2) foot *= pair.r2 / foot_norm;
-  const Vec2 along(-pair.m.y() / pair.s, pair.m.x() / pair.s);
-  const double h2 = std::sqrt(std::max(0.0, (pair.r2 - foot_norm) * (pair.r2 + foot_norm)));
-  // The same line in frame 1: X(tau) = X0 + tau * T with T horizontal and unit.
-  const Vec3 X0 = pair.pointOfDisk2(foot);
-  const Vec3 T = along.x() * pair.R.col(0) + along.y() * pair.R.col(1);
-  const Vec2 X0_xy(X0.x(), X0.y());
-  const Vec2 T_xy(T.x(), T.y());
-  const double tau_mid1 = -X0_xy.dot(T_xy) / T_xy.squaredNorm();
-  const double offset1 = (X0_xy + tau_mid1 * T_xy).norm();  // line's distance to c1
+  const ChordOnPlane1 chord = chordOfDisk2OnPlane1(pair);
+  const Vec2 X0_xy(chord.X0.x(), chord.X0.y());
+  const Vec2 T_xy(chord.T.x(), chord.T.y());
+  const double offset1 = (X0_xy + chord.tau_nearest_c1 * T_xy).norm();  // line's distance to c1
   if (offset1 > pair.r1 + slack) return std::nullopt;
   const double h1 =
       std::sqrt(std::max(0.0, (pair.r1 - offset1) * (pair.r1 + offset1))) / T_xy.norm();
-  const double lo = std::max(-h2, tau_mid1 - h1);
-  const double hi = std::min(h2, tau_mid1 + h1);
+  const double lo = std::max(-chord.half_length, chord.tau_nearest_c1 - h1);
+  const double hi = std::min(chord.half_length, chord.tau_nearest_c1 + h1);
   if (!(lo <= hi + slack)) return std::nullopt;
-  const double mid = std::clamp(0.5 * (lo + hi), -h2, h2);
-  return X0 + mid * T;
+  const double mid = std::clamp(0.5 * (lo + hi), -chord.half_length, chord.half_length);
+  return chord.X0 + mid * chord.T;
 }
 
 }  // namespace internal
