@@ -12,7 +12,7 @@
 // directly (exact_direct, almohamad_selim_direct; path "direct").
 //
 // Pairs: every family of test/disk_families.h (double), fixed seed. Error:
-// |d - d_ref| / max(1, r1 + r2 + |c1 - c2|), d_ref from the independent
+// |d - d_ref| / (r1 + r2 + |c1 - c2|), d_ref from the independent
 // long-double reference of test/reference_distance.h. FCL reports overlap of
 // the cylinders as -1 (unsigned distance); that is read as distance 0.
 //
@@ -161,7 +161,7 @@ struct PreparedPair {
   Case c;
   fam::Family family;
   double reference = 0;  ///< reference distance (rounded to double)
-  double scale = 1;      ///< max(1, r1 + r2 + |c1 - c2|)
+  double scale = 1;      ///< r1 + r2 + |c1 - c2|
   std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
 };
@@ -540,7 +540,7 @@ int main(int argc, char** argv) {
   std::printf("time = median of %d batches of the same query (batch ~%.0f ns, clock cost "
               "%.1f ns subtracted); the run took %.0f s.\n",
               options.reps, options.batch_ns, clock_ns, run_seconds);
-  std::printf("error = |d - d_ref| / max(1, r1 + r2 + |c1 - c2|), d_ref: long-double "
+  std::printf("error = |d - d_ref| / (r1 + r2 + |c1 - c2|), d_ref: long-double "
               "reference; FCL's overlap value -1 read as 0.\n\n");
   std::printf("| family | solver | path | pairs | median ns | p99 ns | median err | max err |\n");
   std::printf("|---|---|---|---:|---:|---:|---:|---:|\n");

@@ -136,13 +136,15 @@ struct DiskPairCase {
   bool hasKnownDistance() const { return !std::isnan(known_distance); }
 };
 
-/// max(1, r1 + r2 + |c1 - c2|): the length that absolute tolerances scale with.
+/// r1 + r2 + |c1 - c2|: the length the solvers' guarantees are relative to
+/// (exact_distance.h), with no floor, so errors are judged relative at every
+/// length scale.
 template <typename S>
 double sceneScale(const DiskPairCase<S>& c) {
   const double centre_gap =
       (c.X_W2.translation().template cast<double>() - c.X_W1.translation().template cast<double>())
           .norm();
-  return std::max(1.0, double(c.r1) + double(c.r2) + centre_gap);
+  return double(c.r1) + double(c.r2) + centre_gap;
 }
 
 /// Bound on |distance(stored poses) - known_distance| from rounding the poses to

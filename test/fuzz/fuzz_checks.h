@@ -154,12 +154,12 @@ struct Scales {
   /// r1 + r2 + |c1 - c2|: the scale of the double guarantees, relative at
   /// every length scale (exact_distance.h; far from the origin costs nothing).
   double pair;
-  /// max(pair, |c1|, |c2|) (float: and 1): where the rounding of world
-  /// coordinates enters (storing points, building and rounding poses).
+  /// max(pair, |c1|, |c2|): where the rounding of world coordinates enters
+  /// (storing points, building and rounding poses).
   double scene;
   /// The scale of S's distance guarantee: pair in double; in float, whose
-  /// documented bound is "a few float ulps of max(1, r1 + r2 + |c1 - c2|,
-  /// |c_i|)", the scene.
+  /// documented bound is "a few float ulps of max(r1 + r2 + |c1 - c2|, |c_i|)"
+  /// (no floor), the scene.
   double distance;
 };
 
@@ -170,7 +170,6 @@ Scales scalesOf(const DiskPairInput<S>& in) {
   Scales scales;
   scales.pair = double(in.r1) + double(in.r2) + (c2 - c1).norm();
   scales.scene = std::max({scales.pair, c1.norm(), c2.norm()});
-  if (kIsFloat<S>) scales.scene = std::max(1.0, scales.scene);
   scales.distance = kIsFloat<S> ? scales.scene : scales.pair;
   return scales;
 }

@@ -186,7 +186,7 @@ void checkBroadphase(const DiskPairInput<S>& in, DiskDistanceMethod method, int 
   // Every pair in both orders: the manager may visit either.
   double least_low = std::numeric_limits<double>::infinity(), least_high = least_low;
   bool must_collide = false, may_collide = false;
-  double scene = 1.0;
+  double scene = 0.0;  // the largest |c_i| + r_i: no floor, the bounds are relative
   for (std::size_t i = 0; i < poses.size(); ++i) {
     scene = std::max(scene, double(poses[i].translation().template cast<double>().norm()) +
                                 double(radii[i]));
