@@ -361,7 +361,7 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// the iteration stops when the two agree to kGapTolerance * scale.
 Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound) {
   const double r1 = pair.r1;
-  // Start on the rim, towards disk 2's centre (the optimum is on the rim).
+  // Start on the rim (the optimum is on the rim), at rimStartDirection.
   // `radial` is s's direction while s is on the rim (s == r1 * radial), carried
   // from step to step so that rim iterations need no normalisation.
   Vec2 radial = rimStartDirection(pair);

@@ -55,7 +55,8 @@ namespace fcl_disk {
 ///   are parallel) the +u direction of the other disk is used.
 /// - Rim-rim: the optimal pair is unique (a convex set of optimal points on a
 ///   circle is one point). Newton starts on disk 1's rim, towards where disk 2
-///   comes nearest plane 1 (docs/exact_distance.md, section 4), and stops at a certified gap of 1e-14 * scale, at the rounding floor (flat,
+///   comes nearest plane 1 (docs/exact_distance.md, section 4), and stops at a
+///   certified gap of 1e-14 * scale, at the rounding floor (flat,
 ///   near-degenerate optima, e.g. next to a face case), or after 16 iterations;
 ///   the best pair found is returned and lower_bound says how well it is proven.
 /// Invalid input never crashes and never gets a made-up answer: a radius
