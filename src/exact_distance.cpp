@@ -132,7 +132,7 @@ std::optional<Vec2> overlapOfProjections(const PairInFrame1& pair) {
 /// on one side of plane 1 and q projects into disk 1.
 std::optional<Solution> faceOfDisk1(const PairInFrame1& pair, double scale) {
   const double cz = pair.c.z();
-  const double lowest_height = std::abs(cz) - pair.r2 * pair.s;
+  const double lowest_height = pair.disk2ClearanceOfPlane1();
   if (!(lowest_height > 0.0)) return std::nullopt;
   const double side = cz > 0.0 ? 1.0 : -1.0;
   Vec3 q;
@@ -162,9 +162,7 @@ double lowerBound(const PairInFrame1& pair, const Vec3& w_hat) {
 /// g is only Lipschitz, so near-face optima are certified better by the normal
 /// itself than by a slightly misdirected separation direction. Constant per pair.
 double faceLowerBound(const PairInFrame1& pair) {
-  const double over_plane1 = std::abs(pair.c.z()) - pair.r2 * pair.s;
-  const double over_plane2 = std::abs(pair.R.col(2).dot(pair.c)) - pair.r1 * pair.s;
-  return std::max({0.0, over_plane1, over_plane2});
+  return std::max({0.0, pair.disk2ClearanceOfPlane1(), pair.disk1ClearanceOfPlane2()});
 }
 
 /// The certificate along the separation q - p of a pair (frame 1). g is
@@ -338,13 +336,13 @@ Vec2 directionOf(const Vec2& v) {
 Vec2 rimStartDirection(const PairInFrame1& pair) {
   const Vec2 towards_c2(pair.c.x(), pair.c.y());
   if (!(pair.s > kTiltedStart)) return directionOf(towards_c2);
-  if (std::abs(pair.c.z()) <= pair.r2 * pair.s) {  // disk 2 crosses plane 1
+  if (pair.disk2ClearanceOfPlane1() <= 0.0) {  // disk 2 crosses plane 1
     const internal::ChordOnPlane1 chord = internal::chordOfDisk2OnPlane1(pair);
     const double tau =
         std::clamp(chord.tau_nearest_c1, -chord.half_length, chord.half_length);
     return directionOf(Vec2(chord.X0.x() + tau * chord.T.x(), chord.X0.y() + tau * chord.T.y()));
   }
-  if (std::abs(pair.R.col(2).dot(pair.c)) <= pair.r1 * pair.s) return directionOf(towards_c2);
+  if (pair.disk1ClearanceOfPlane2() <= 0.0) return directionOf(towards_c2);
   const Vec3 towards_plane1 = pair.rimPointTowardsPlane1();
   return directionOf(Vec2(towards_plane1.x(), towards_plane1.y()));
 }
@@ -552,7 +550,7 @@ Solution solveInFrame1(const PairInFrame1& pair) {
   }
   // Disk 2's face case needs disk 1 wholly on one side of plane 2 (the first
   // test of faceOfDisk1 seen from disk 2), checked before building that view.
-  if (std::abs(pair.R.col(2).dot(pair.c)) > pair.r1 * pair.s) {
+  if (pair.disk1ClearanceOfPlane2() > 0.0) {
     if (auto face2 = faceOfDisk1(pair.swapped(), scale)) {
       // Map back from disk 2's frame: x_1 = c + R x_2.
       const Vec3 p = pair.c + pair.R * face2->q;

@@ -80,6 +80,12 @@ struct PairInFrame1 {
   /// Maps a point of disk-2-in-plane coordinates (a, b) to frame 1.
   Vec3 pointOfDisk2(const Vec2& ab) const { return c + ab.x() * R.col(0) + ab.y() * R.col(1); }
 
+  /// How far disk 2 stays off plane 1: |c_z| - r2 s (disk 2 spans heights
+  /// c_z +- r2 s), > 0 iff it lies wholly on one side, <= 0 iff it crosses.
+  double disk2ClearanceOfPlane1() const { return std::abs(c.z()) - r2 * s; }
+  /// The same for disk 1 and plane 2 (c1 is at height -n.c over plane 2).
+  double disk1ClearanceOfPlane2() const { return std::abs(R.col(2).dot(c)) - r1 * s; }
+
   /// The rim point of disk 2 extreme towards plane 1 (lowest if c is above
   /// it): direction -sign(c_z) m / s in disk 2's plane. Requires s > 0.
   Vec3 rimPointTowardsPlane1() const {
