@@ -9,6 +9,11 @@
 //                                         CollisionObjects (method switched with
 //                                         registerDiskFunctions): minus direct =
 //                                         the hook's dispatch overhead;
+//   fcl_distance/dispatch_only/<float|double>
+//                                         the same pairs with a result already at
+//                                         distance 0: FCL's entry path and the
+//                                         hook's Disk test, no solver (the floor
+//                                         of the overhead);
 //   fcl_collide/disk/<float|double>       intersectDisks through fcl::collide;
 //   fcl_distance/gjk_<libccd|indep>_cylinder_h<h>/double
 //                                         FCL's GJK on Cylinder(r, h), default
@@ -140,6 +145,26 @@ void fclDistanceDisk(benchmark::State& state, fcl_disk::DiskDistanceMethod metho
   finish(state);
 }
 
+// The dispatch alone: the same disk pairs through fcl::distance with a result
+// already at distance 0, which FCL's shape-pair entries (and fcl_disk's) leave
+// alone without computing anything. What remains is FCL's entry path (the
+// solver object, the table lookup, the virtual type queries) plus the hook's
+// Disk test: the floor under any disk query through fcl::distance.
+template <typename S>
+void fclDistanceDispatchOnly(benchmark::State& state) {
+  const auto& p = pool<S>();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPoolSize - 1);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> result;
+    result.min_distance = S(0);
+    benchmark::DoNotOptimize(fcl::distance(p.disk1[k].get(), p.disk2[k].get(), request, result));
+    benchmark::DoNotOptimize(result);
+  }
+  finish(state);
+}
+
 template <typename S>
 void fclCollideDisk(benchmark::State& state) {
   const auto& p = pool<S>();
@@ -218,6 +243,8 @@ void registerScalar(const std::string& scalar) {
   benchmark::RegisterBenchmark(
       ("fcl_distance/almohamad_selim/" + scalar).c_str(),
       [](benchmark::State& st) { fclDistanceDisk<S>(st, M::almohamad_selim); });
+  benchmark::RegisterBenchmark(("fcl_distance/dispatch_only/" + scalar).c_str(),
+                               fclDistanceDispatchOnly<S>);
   benchmark::RegisterBenchmark(("fcl_collide/disk/" + scalar).c_str(), fclCollideDisk<S>);
 }
 

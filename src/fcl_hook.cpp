@@ -77,12 +77,38 @@ S answerNoDistance(const CollisionGeometry<S>* o1, const CollisionGeometry<S>* o
   return nan;
 }
 
+// FCL's DistanceRequest::isSatisfied and DistanceResult::update (the overload
+// with nearest points), written out. libfcl exports their double
+// instantiations, so calling them costs two round trips through the PLT per
+// query: 4 ns of a disk query's ~25 ns dispatch cost (bench_disk_distance,
+// docs/performance.md); written out they cost nothing measurable.
+// test_hook's ResultConventionsMatchFcls checks they behave as FCL's.
+
+/// isSatisfied: a result already at distance <= 0 (contact) cannot improve.
+template <typename S>
+bool distanceIsSettled(const fcl::DistanceResult<S>& result) {
+  return result.min_distance <= 0;
+}
+
+/// update: the result keeps the nearer of what it holds and this pair.
+template <typename S>
+void keepIfNearer(fcl::DistanceResult<S>& result, S distance, const CollisionGeometry<S>* o1,
+                  const CollisionGeometry<S>* o2, const fcl::Vector3<S>& p1,
+                  const fcl::Vector3<S>& p2) {
+  if (!(result.min_distance > distance)) return;
+  result.min_distance = distance;
+  result.o1 = o1;
+  result.o2 = o2;
+  result.b1 = result.b2 = fcl::DistanceResult<S>::NONE;
+  result.nearest_points[0] = p1;
+  result.nearest_points[1] = p2;
+}
+
 template <typename S>
 S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk<S>& disk2,
-                     const Transform3<S>& X_W2, const fcl::DistanceRequest<S>& request,
-                     fcl::DistanceResult<S>& result) {
+                     const Transform3<S>& X_W2, fcl::DistanceResult<S>& result) {
   // Same early exit as FCL's ShapeShapeDistance.
-  if (request.isSatisfied(result)) return result.min_distance;
+  if (distanceIsSettled(result)) return result.min_distance;
   ++t_disk_answers;
   const DiskDistanceResult<S> answer =
       g_method.load(std::memory_order_relaxed) == DiskDistanceMethod::almohamad_selim
@@ -91,9 +117,8 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
   if (std::isnan(answer.distance)) return answerNoDistance<S>(&disk1, &disk2, result);
   // Overlap: distance 0 with a common point as both nearest points, for signed and
   // unsigned requests alike (a zero-thickness disk has no interior to penetrate).
-  result.update(answer.distance, &disk1, &disk2, fcl::DistanceResult<S>::NONE,
-                fcl::DistanceResult<S>::NONE, answer.p_W1, answer.p_W2);
-  return answer.distance;
+  keepIfNearer(result, answer.distance, &disk1, &disk2, answer.p_W1, answer.p_W2);
+  return result.min_distance;  // as FCL's ShapeShapeDistance: the result's minimum
 }
 
 template <typename S>
@@ -165,7 +190,7 @@ struct DistanceSlot {
                 const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
     const Disk<S>* disk1 = Row == fcl::GEOM_CYLINDER ? asDisk(o1) : nullptr;
     const Disk<S>* disk2 = Col == fcl::GEOM_CYLINDER ? asDisk(o2) : nullptr;
-    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, request, result);
+    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, result);
     if ((disk1 || disk2) && !fitForFcl(disk1, tf1, disk2, tf2)) {
       return answerNoDistance(o1, o2, result);
     }

@@ -180,6 +180,51 @@ TEST(Hook, FloatQueriesUseTheDiskSolver) {
   }
 }
 
+// One DistanceResult carried through several queries (as FCL's broadphase
+// callbacks do): a disk pair follows the same conventions as FCL's own shape
+// pairs, checked side by side on spheres. The result keeps the nearest pair
+// seen, fcl::distance returns the result's minimum, and a result already at
+// distance 0 is left alone.
+TEST(Hook, ResultConventionsMatchFcls) {
+  fcl_disk::registerDiskFunctions();
+  const auto check = [](std::shared_ptr<fcl::CollisionGeometryd> shape, const char* name) {
+    SCOPED_TRACE(name);
+    const Transform3d at_origin = Transform3d::Identity();
+    // Apart along the common normal (disks face to face): gaps 0.5 and 3 less
+    // the spheres' diameters, and a copy in the same place.
+    const Transform3d near = pose(Vec3(0.0, 0.0, 0.5), Vec3::UnitZ());
+    const Transform3d far = pose(Vec3(0.0, 0.0, 3.0), Vec3::UnitZ());
+    const Transform3d touching = at_origin;
+    const fcl::CollisionObjectd base(shape, at_origin), near_object(shape, near),
+        far_object(shape, far), touching_object(shape, touching);
+    const fcl::DistanceRequestd request;
+    fcl::DistanceResultd result;
+    const double d_far = fcl::distance(&base, &far_object, request, result);
+    EXPECT_GT(d_far, 0.0);
+    EXPECT_EQ(result.min_distance, d_far);
+    const double d_near = fcl::distance(&base, &near_object, request, result);
+    ASSERT_LT(d_near, d_far);
+    EXPECT_EQ(result.min_distance, d_near);
+    const fcl::DistanceResultd after_near = result;
+    // A farther pair leaves the result as it was and returns its minimum.
+    EXPECT_EQ(fcl::distance(&base, &far_object, request, result), d_near);
+    EXPECT_EQ(result.min_distance, d_near);
+    EXPECT_EQ(result.o1, after_near.o1);
+    EXPECT_EQ(result.o2, after_near.o2);
+    EXPECT_EQ(result.nearest_points[0], after_near.nearest_points[0]);
+    EXPECT_EQ(result.nearest_points[1], after_near.nearest_points[1]);
+    // A result at distance 0 is settled: later pairs do not touch it.
+    fcl::DistanceResultd settled;
+    EXPECT_LE(fcl::distance(&base, &touching_object, request, settled), 0.0);
+    const fcl::DistanceResultd after_touching = settled;
+    EXPECT_EQ(fcl::distance(&base, &near_object, request, settled), after_touching.min_distance);
+    EXPECT_EQ(settled.min_distance, after_touching.min_distance);
+    EXPECT_EQ(settled.nearest_points[0], after_touching.nearest_points[0]);
+  };
+  check(std::make_shared<fcl::Sphered>(0.1), "FCL's sphere-sphere");
+  check(std::make_shared<fcl_disk::Diskd>(1.0), "fcl_disk's disk-disk");
+}
+
 // A scene of disks (and boxes): the broadphase finds the same nearest pair and
 // the same colliding pairs as brute-force pairwise queries.
 TEST(Hook, BroadphaseAgreesWithBruteForce) {
