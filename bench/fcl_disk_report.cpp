@@ -9,7 +9,11 @@
 //   gjk_indep_h<h>             h in {1e-2, 1e-4, 1e-6}, default DistanceRequest
 //                              (distance_tolerance 1e-6) but the solver type.
 // plus, for the hook's overhead in the same run, the two disk solvers called
-// directly (exact_direct, almohamad_selim_direct; path "direct").
+// directly (exact_direct, almohamad_selim_direct; path "direct"), and
+// fcl_entry_only: the disk pair through fcl::distance with a result already at
+// distance 0, which FCL's shape-pair entries (and fcl_disk's) leave alone, so
+// FCL's entry path and the hook's Disk test without a solver: the floor under
+// any disk query through fcl::distance (timed only; no error, not in the CSV).
 //
 // Pairs: every family of test/disk_families.h (double), fixed seed. Error:
 // |d - d_ref| / (r1 + r2 + |c1 - c2|), d_ref from the independent
@@ -169,7 +173,7 @@ struct PreparedPair {
 const double kHeights[] = {1e-2, 1e-4, 1e-6};
 constexpr int kNumHeights = 3;
 
-enum class Kind { disk_fcl, disk_direct, gjk };
+enum class Kind { disk_fcl, disk_direct, gjk, fcl_entry };
 
 struct Solver {
   std::string name;
@@ -198,6 +202,7 @@ std::vector<Solver> makeSolvers() {
   solvers.push_back({"exact_direct", "direct", Kind::disk_direct, M::exact});
   solvers.push_back(
       {"almohamad_selim_direct", "direct", Kind::disk_direct, M::almohamad_selim});
+  solvers.push_back({"fcl_entry_only", "fcl::distance, result at 0", Kind::fcl_entry});
   return solvers;
 }
 
@@ -217,6 +222,13 @@ inline double query(const Solver& solver, const PreparedPair& pair) {
       return solver.method == fcl_disk::DiskDistanceMethod::exact
                  ? fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance
                  : fcl_disk::almohamadSelimDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance;
+    }
+    case Kind::fcl_entry: {
+      fcl::DistanceRequestd request;
+      fcl::DistanceResultd result;
+      result.min_distance = 0;
+      fcl::distance(pair.disk1.get(), pair.disk2.get(), request, result);
+      return result.min_distance;
     }
     case Kind::gjk: {
       fcl::DistanceRequestd request;
@@ -266,7 +278,8 @@ Measurement measure(const Solver& solver, const PreparedPair& pair, const Option
   double d = query(solver, pair);
   if (d < 0) d = 0;  // FCL's unsigned distance reports overlap as -1
   m.distance = d;
-  m.error = std::fabs(d - pair.reference) / pair.scale;
+  m.error = solver.kind == Kind::fcl_entry ? std::nan("")  // answers nothing
+                                           : std::fabs(d - pair.reference) / pair.scale;
   // Calibrate the batch length on a second call.
   const auto t0 = Clock::now();
   double sink = query(solver, pair);
@@ -376,6 +389,7 @@ std::string formatNs(double ns) {
 std::string formatErr(double e) {
   char buffer[32];
   if (e == 0) return "0";
+  if (std::isnan(e)) return "-";  // fcl_entry_only: times, answers nothing
   std::snprintf(buffer, sizeof buffer, "%.1e", e);
   return buffer;
 }
@@ -506,6 +520,7 @@ int main(int argc, char** argv) {
       for (const PairRecord& r : records) {
         if (r.family != family) continue;
         ns.push_back(r.results[s].ns);
+        if (solvers[s].kind == Kind::fcl_entry) continue;  // no answer, no error
         err.push_back(r.results[s].error);
         if (r.results[s].error > worst_err) {
           worst_err = r.results[s].error;
@@ -598,6 +613,12 @@ int main(int argc, char** argv) {
   std::printf("- hook overhead, almohamad_selim: %.1f%% (%s ns vs %s ns direct)\n",
               100 * (as.median_ns - as_direct.median_ns) / as.median_ns,
               formatNs(as.median_ns).c_str(), formatNs(as_direct.median_ns).c_str());
+  const Summary& entry = find("fcl_entry_only", "all");
+  std::printf("- FCL's entry path alone (fcl_entry_only: fcl::distance on the disk pair with a "
+              "result already at 0, the hook's Disk test included, no solver): %s ns, %.1f%% of "
+              "the exact query; the overhead above is %s ns\n",
+              formatNs(entry.median_ns).c_str(), 100 * entry.median_ns / exact.median_ns,
+              formatNs(exact.median_ns - exact_direct.median_ns).c_str());
 
   // 6. The exact solver against its promise, with the cases that break it.
   std::size_t exact_index = 0;
@@ -632,6 +653,7 @@ int main(int argc, char** argv) {
     csv << "solver,path,family,pairs,median_ns,p99_ns,median_rel_err,max_rel_err,worst_case\n";
     csv.precision(6);
     for (const Summary& s : summaries) {
+      if (s.solver == "fcl_entry_only") continue;  // no error to plot
       csv << s.solver << ',' << s.path << ',' << s.family << ',' << s.pairs << ','
           << s.median_ns << ',' << s.p99_ns << ',' << s.median_err << ',' << s.max_err << ','
           << s.worst_case << '\n';
@@ -643,6 +665,7 @@ int main(int argc, char** argv) {
     csv << "family,case,solver,ns,distance,reference,scale,rel_err\n";
     for (const PairRecord& r : records) {
       for (std::size_t s = 0; s < num_solvers; ++s) {
+        if (solvers[s].kind == Kind::fcl_entry) continue;
         const Measurement& m = r.results[s];
         csv << fam::familyName(r.family) << ',' << r.name << ',' << solvers[s].name << ','
             << std::setprecision(4) << m.ns << ',' << std::setprecision(17) << m.distance << ','
