@@ -52,11 +52,14 @@ const double kHeights[] = {1e-2, 1e-4, 1e-6};
 const char* const kHeightNames[] = {"1e-2", "1e-4", "1e-6"};
 
 template <typename S>
+using Objects = std::vector<std::unique_ptr<fcl::CollisionObject<S>>>;
+
+template <typename S>
 struct Pool {
   std::vector<fam::DiskPairCase<S>> cases;
-  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> disk1, disk2;
-  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> cyl1[3], cyl2[3];
-  std::vector<std::unique_ptr<fcl::CollisionObject<S>>> sphere1, sphere2;
+  Objects<S> disk1, disk2;
+  Objects<S> cyl1[3], cyl2[3];
+  Objects<S> sphere1, sphere2;
 };
 
 template <typename S>
@@ -129,20 +132,30 @@ void directIntersect(benchmark::State& state) {
 
 // ---- through FCL's dispatch -------------------------------------------------
 
-template <typename S>
-void fclDistanceDisk(benchmark::State& state, fcl_disk::DiskDistanceMethod method) {
-  const auto& p = pool<S>();
-  fcl_disk::registerDiskFunctions(method);
+/// One fcl::distance per iteration on the pool's pairs (objects1[k], objects2[k]),
+/// with a fresh request and result each time, set up by prepare(request, result).
+template <typename S, typename Prepare>
+void cycleFclDistance(benchmark::State& state, const Objects<S>& objects1,
+                      const Objects<S>& objects2, Prepare prepare) {
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t k = i++ & (kPoolSize - 1);
     fcl::DistanceRequest<S> request;
     fcl::DistanceResult<S> result;
-    benchmark::DoNotOptimize(fcl::distance(p.disk1[k].get(), p.disk2[k].get(), request, result));
+    prepare(request, result);
+    benchmark::DoNotOptimize(
+        fcl::distance(objects1[k].get(), objects2[k].get(), request, result));
     benchmark::DoNotOptimize(result);
   }
-  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
   finish(state);
+}
+
+template <typename S>
+void fclDistanceDisk(benchmark::State& state, fcl_disk::DiskDistanceMethod method) {
+  const auto& p = pool<S>();
+  fcl_disk::registerDiskFunctions(method);
+  cycleFclDistance<S>(state, p.disk1, p.disk2, [](auto&, auto&) {});
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
 }
 
 // The dispatch alone: the same disk pairs through fcl::distance with a result
@@ -153,16 +166,23 @@ void fclDistanceDisk(benchmark::State& state, fcl_disk::DiskDistanceMethod metho
 template <typename S>
 void fclDistanceDispatchOnly(benchmark::State& state) {
   const auto& p = pool<S>();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const std::size_t k = i++ & (kPoolSize - 1);
-    fcl::DistanceRequest<S> request;
-    fcl::DistanceResult<S> result;
-    result.min_distance = S(0);
-    benchmark::DoNotOptimize(fcl::distance(p.disk1[k].get(), p.disk2[k].get(), request, result));
-    benchmark::DoNotOptimize(result);
-  }
-  finish(state);
+  cycleFclDistance<S>(state, p.disk1, p.disk2,
+                      [](auto&, fcl::DistanceResult<S>& result) { result.min_distance = S(0); });
+}
+
+template <typename S>
+void fclDistanceGjkCylinder(benchmark::State& state, fcl::GJKSolverType solver, int height) {
+  const auto& p = pool<S>();
+  cycleFclDistance<S>(state, p.cyl1[height], p.cyl2[height],
+                      [solver](fcl::DistanceRequest<S>& request, auto&) {
+                        request.gjk_solver_type = solver;
+                      });
+}
+
+template <typename S>
+void fclDistanceSphereSphere(benchmark::State& state) {
+  const auto& p = pool<S>();
+  cycleFclDistance<S>(state, p.sphere1, p.sphere2, [](auto&, auto&) {});
 }
 
 template <typename S>
@@ -174,37 +194,6 @@ void fclCollideDisk(benchmark::State& state) {
     fcl::CollisionRequest<S> request;
     fcl::CollisionResult<S> result;
     benchmark::DoNotOptimize(fcl::collide(p.disk1[k].get(), p.disk2[k].get(), request, result));
-    benchmark::DoNotOptimize(result);
-  }
-  finish(state);
-}
-
-template <typename S>
-void fclDistanceGjkCylinder(benchmark::State& state, fcl::GJKSolverType solver, int height) {
-  const auto& p = pool<S>();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const std::size_t k = i++ & (kPoolSize - 1);
-    fcl::DistanceRequest<S> request;
-    request.gjk_solver_type = solver;
-    fcl::DistanceResult<S> result;
-    benchmark::DoNotOptimize(
-        fcl::distance(p.cyl1[height][k].get(), p.cyl2[height][k].get(), request, result));
-    benchmark::DoNotOptimize(result);
-  }
-  finish(state);
-}
-
-template <typename S>
-void fclDistanceSphereSphere(benchmark::State& state) {
-  const auto& p = pool<S>();
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const std::size_t k = i++ & (kPoolSize - 1);
-    fcl::DistanceRequest<S> request;
-    fcl::DistanceResult<S> result;
-    benchmark::DoNotOptimize(
-        fcl::distance(p.sphere1[k].get(), p.sphere2[k].get(), request, result));
     benchmark::DoNotOptimize(result);
   }
   finish(state);
