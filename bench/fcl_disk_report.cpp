@@ -211,11 +211,9 @@ std::vector<Solver> makeSolvers() {
 /// outside the timed region.
 inline double query(const Solver& solver, const PreparedPair& pair) {
   switch (solver.kind) {
-    case Kind::disk_fcl:
-    case Kind::fcl_entry: {
+    case Kind::disk_fcl: {
       fcl::DistanceRequestd request;
       fcl::DistanceResultd result;
-      if (solver.kind == Kind::fcl_entry) result.min_distance = 0;  // settled: no solver runs
       fcl::distance(pair.disk1.get(), pair.disk2.get(), request, result);
       return result.min_distance;
     }
@@ -224,6 +222,13 @@ inline double query(const Solver& solver, const PreparedPair& pair) {
       return solver.method == fcl_disk::DiskDistanceMethod::exact
                  ? fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance
                  : fcl_disk::almohamadSelimDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance;
+    }
+    case Kind::fcl_entry: {
+      fcl::DistanceRequestd request;
+      fcl::DistanceResultd result;
+      result.min_distance = 0;
+      fcl::distance(pair.disk1.get(), pair.disk2.get(), request, result);
+      return result.min_distance;
     }
     case Kind::gjk: {
       fcl::DistanceRequestd request;
