@@ -58,16 +58,27 @@ constexpr double kCertifyStep = 1e-6;
 /// every family of test/disk_families.h (docs/exact_distance.md, section 4).
 constexpr double kTiltedStart = 0.1;
 
-/// The global rim search (rimSearch) runs when Newton ends with a certified gap
-/// above kFallbackGap * scale (well above the certificate's own rounding, so
-/// only genuinely unconverged pairs pay for it): kRimSamples samples, the
-/// kRimCandidates lowest local minima refined, each by at most
-/// kMaxRimSearchIterations golden-section steps (enough to shrink a bracket of
-/// two samples to the resolution of theta).
+/// The fallbacks (solveInFrame1: local rim search, the iteration on disk 2's
+/// rim, global rim search, each only while the gap is still open) run when
+/// Newton ends with a certified gap above kFallbackGap * scale (well above the
+/// certificate's own rounding, so only genuinely unconverged pairs pay for
+/// them). The global search: kRimSamples samples, the kRimCandidates lowest
+/// local minima refined, each by at most kMaxRimSearchIterations golden-section
+/// steps (enough to shrink a bracket of two samples to the resolution of theta).
 constexpr double kFallbackGap = 1e-12;
 constexpr int kRimSamples = 256;
 constexpr int kRimCandidates = 4;
 constexpr int kMaxRimSearchIterations = 80;
+
+/// Before the global rim search, the local minimum of psi along disk 1's rim
+/// next to Newton's answer is bracketed (steps from kFirstBracketStep radians,
+/// growing by kBracketGrowth up to a half turn) and refined like a sampled
+/// minimum. Newton crawls where psi along the rim is a rounded V: nearly
+/// coplanar rims crossing in projection, where psi's curvature jumps by ~1/tilt^2
+/// within an angle ~d / r (docs/exact_distance.md, section 4); the first step is
+/// far below any such width that double resolves.
+constexpr double kFirstBracketStep = 1e-9;
+constexpr double kBracketGrowth = 4.0;
 
 /// Iterations are capped: median 3-4 on rim-rim pairs; the ~1% that reach the
 /// cap are flat, near-degenerate optima, handed to the rim search when their
@@ -479,19 +490,94 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   return finish(kMaxNewtonIterations);  // the certificate says how well it is proven
 }
 
-/// Fallback for the rare rim-rim pairs the Newton iteration leaves uncertified
-/// (nearly parallel disks whose psi is flat to rounding over a long valley):
-/// since p* lies on disk 1's rim, minimise psi along the rim globally. Sample
-/// kRimSamples angles, then refine the lowest sampled local minima by
-/// golden-section search inside the bracket of their neighbouring samples (psi
-/// restricted to the rim may have several local minima; the lowest refined one
-/// is kept).
-Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
-  const double r1 = pair.r1;
+/// Disk 1's rim point at angle theta (frame 1, in-plane coordinates).
+Vec2 rimPoint(const PairInFrame1& pair, double theta) {
+  return Vec2(pair.r1 * std::cos(theta), pair.r1 * std::sin(theta));
+}
+
+/// Golden-section search for the minimum of psi along disk 1's rim inside the
+/// bracket [lo, hi] (radians), on psi's values: near the optimum of nearly
+/// parallel disks psi's gradient is below its rounding while its values are
+/// still resolved, so a value-based search is the robust choice. Returns the
+/// pair found and its certificate.
+Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
+                            double face_lower_bound) {
+  constexpr double kInvPhi = 0.6180339887498949;
   constexpr double kTwoPi = 6.283185307179586;
-  auto point = [&](double theta) { return Vec2(r1 * std::cos(theta), r1 * std::sin(theta)); };
+  double a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
+  PointToDisk2 at_a = evaluate(pair, rimPoint(pair, a)), at_b = evaluate(pair, rimPoint(pair, b));
+  for (int iteration = 0;
+       iteration < kMaxRimSearchIterations && hi - lo > kLineSearchResolution * kTwoPi;
+       ++iteration) {
+    if (at_a.psi <= at_b.psi) {
+      hi = b, b = a, at_b = at_a;
+      a = hi - kInvPhi * (hi - lo);
+      at_a = evaluate(pair, rimPoint(pair, a));
+    } else {
+      lo = a, a = b, at_a = at_b;
+      b = lo + kInvPhi * (hi - lo);
+      at_b = evaluate(pair, rimPoint(pair, b));
+    }
+  }
+  const bool a_wins = at_a.psi <= at_b.psi;
+  const Vec2 s = rimPoint(pair, a_wins ? a : b);
+  const PointToDisk2& at = a_wins ? at_a : at_b;
+  const Vec3 x(s.x(), s.y(), 0.0);
+  return {x, at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
+          std::max(face_lower_bound, separationLowerBound(pair, at.q - x))};
+}
+
+/// First fallback for rim-rim pairs Newton leaves uncertified: the local
+/// minimum of psi along disk 1's rim next to `start` (Newton's answer, frame 1),
+/// bracketed by steps growing from kFirstBracketStep in the direction psi
+/// decreases, then refined by goldenSectionOnRim.
+Solution localRimSearch(const PairInFrame1& pair, const Vec3& start, double face_lower_bound) {
+  constexpr double kHalfTurn = 3.141592653589793;
+  const double theta0 = std::atan2(start.y(), start.x());
+  const double psi0 = evaluate(pair, rimPoint(pair, theta0)).psi;
+  // Downhill side: the first step that lowers psi (none: theta0 is a minimum
+  // to the resolution of the first step, bracketed by +-that step).
+  double direction = 0.0;
+  double psi_next = psi0;
+  for (const double side : {1.0, -1.0}) {
+    psi_next = evaluate(pair, rimPoint(pair, theta0 + side * kFirstBracketStep)).psi;
+    if (psi_next < psi0) {
+      direction = side;
+      break;
+    }
+  }
+  if (direction == 0.0) {
+    return goldenSectionOnRim(pair, theta0 - kFirstBracketStep, theta0 + kFirstBracketStep,
+                              face_lower_bound);
+  }
+  // Walk downhill with growing steps until psi rises: the last three angles
+  // bracket a local minimum.
+  double behind = theta0, middle = theta0 + direction * kFirstBracketStep;
+  double psi_middle = psi_next;
+  double step = kFirstBracketStep;
+  for (;;) {
+    step = std::min(step * kBracketGrowth, kHalfTurn);
+    const double ahead = middle + direction * step;
+    const double psi_ahead = evaluate(pair, rimPoint(pair, ahead)).psi;
+    if (psi_ahead >= psi_middle || step >= kHalfTurn) {
+      return goldenSectionOnRim(pair, std::min(behind, ahead), std::max(behind, ahead),
+                                face_lower_bound);
+    }
+    behind = middle, middle = ahead, psi_middle = psi_ahead;
+  }
+}
+
+/// Last fallback for the rare rim-rim pairs still uncertified (nearly parallel
+/// disks whose psi is flat to rounding over a long valley, or whose rim has
+/// several local minima): since p* lies on disk 1's rim, minimise psi along the
+/// rim globally. Sample kRimSamples angles, then refine the lowest sampled local
+/// minima by golden-section search inside the bracket of their neighbouring
+/// samples (the lowest refined one is kept).
+Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
+  constexpr double kTwoPi = 6.283185307179586;
+  constexpr double kStep = kTwoPi / kRimSamples;
   std::array<double, kRimSamples> psi{};
-  for (int k = 0; k < kRimSamples; ++k) psi[k] = evaluate(pair, point(kTwoPi * k / kRimSamples)).psi;
+  for (int k = 0; k < kRimSamples; ++k) psi[k] = evaluate(pair, rimPoint(pair, kStep * k)).psi;
   // Local minima of the samples, lowest first.
   std::array<int, kRimSamples> minima{};
   int count = 0;
@@ -504,38 +590,39 @@ Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
   Solution best{Vec3::Zero(), Vec3::Zero(), std::numeric_limits<double>::infinity(),
                 DiskPairFeature::rim_rim};
   for (int m = 0; m < std::min(count, kRimCandidates); ++m) {
-    // Golden-section search on psi's values: near the optimum of nearly
-    // parallel disks psi's gradient is below its rounding while its values are
-    // still resolved, so a value-based bracket search is the robust choice.
-    constexpr double kInvPhi = 0.6180339887498949;
-    const double step = kTwoPi / kRimSamples;
-    double lo = kTwoPi * minima[m] / kRimSamples - step, hi = lo + 2 * step;
-    double a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
-    PointToDisk2 at_a = evaluate(pair, point(a)), at_b = evaluate(pair, point(b));
-    for (int iteration = 0; iteration < kMaxRimSearchIterations &&
-                            hi - lo > kLineSearchResolution * kTwoPi;
-         ++iteration) {
-      if (at_a.psi <= at_b.psi) {
-        hi = b, b = a, at_b = at_a;
-        a = hi - kInvPhi * (hi - lo);
-        at_a = evaluate(pair, point(a));
-      } else {
-        lo = a, a = b, at_a = at_b;
-        b = lo + kInvPhi * (hi - lo);
-        at_b = evaluate(pair, point(b));
-      }
-    }
-    const bool a_wins = at_a.psi <= at_b.psi;
-    const double theta = a_wins ? a : b;
-    const PointToDisk2& at = a_wins ? at_a : at_b;
-    const Vec3 x(point(theta).x(), point(theta).y(), 0.0);
-    const double distance = std::sqrt(2.0 * at.psi);
-    if (distance < best.distance) {
-      best = {x, at.q, distance, DiskPairFeature::rim_rim, 0,
-              std::max(face_lower_bound, separationLowerBound(pair, at.q - x))};
-    }
+    const double centre = kStep * minima[m];
+    const Solution refined =
+        goldenSectionOnRim(pair, centre - kStep, centre + kStep, face_lower_bound);
+    if (refined.distance < best.distance) best = refined;
   }
   return best;
+}
+
+/// The better of two rim-rim answers: the nearer pair, and the larger of the
+/// two certificates (both are lower bounds of the same distance).
+Solution nearer(const Solution& kept, const Solution& other) {
+  Solution best = other.distance < kept.distance ? other : kept;
+  best.iterations = kept.iterations;
+  best.lower_bound = std::max(kept.lower_bound, other.lower_bound);
+  return best;
+}
+
+/// A solution of pair.swapped() (frame 2, disk 2 first) mapped back to frame 1.
+Solution fromDisk2(const PairInFrame1& pair, const Solution& swapped) {
+  Solution out = swapped;
+  out.p = pair.c + pair.R * swapped.q;
+  out.q = pair.c + pair.R * swapped.p;
+  return out;
+}
+
+/// The rim-rim iteration and its local fallback on disk 2's rim (frame 2).
+Solution rimRimFromDisk2(const PairInFrame1& pair, double scale, double face_lower_bound) {
+  const PairInFrame1 swapped = pair.swapped();
+  Solution answer = rimRim(swapped, scale, face_lower_bound);
+  if (answer.distance - answer.lower_bound > kFallbackGap * scale) {
+    answer = nearer(answer, localRimSearch(swapped, answer.p, face_lower_bound));
+  }
+  return answer;
 }
 
 Solution solveInFrame1(const PairInFrame1& pair) {
@@ -558,17 +645,18 @@ Solution solveInFrame1(const PairInFrame1& pair) {
       return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
     }
   }
-  Solution newton = rimRim(pair, scale, face_lower_bound);
-  if (newton.distance - newton.lower_bound > kFallbackGap * scale) {
-    const Solution searched = rimSearch(pair, face_lower_bound);
-    if (searched.distance < newton.distance) {
-      Solution better = searched;
-      better.iterations = newton.iterations;
-      better.lower_bound = std::max(better.lower_bound, newton.lower_bound);
-      return better;
-    }
-  }
-  return newton;
+  // Newton, then while the certified gap is open: the local minimum along rim 1
+  // next to Newton's answer, the same two steps on rim 2 (both points of a
+  // rim-rim optimum are on a rim, and where one side crawls the other may not),
+  // and the global search along rim 1. Every answer is a feasible pair and
+  // every certificate a lower bound: the nearest pair and the largest bound are
+  // kept (docs/exact_distance.md, section 4).
+  Solution answer = rimRim(pair, scale, face_lower_bound);
+  const auto open = [&] { return answer.distance - answer.lower_bound > kFallbackGap * scale; };
+  if (open()) answer = nearer(answer, localRimSearch(pair, answer.p, face_lower_bound));
+  if (open()) answer = nearer(answer, fromDisk2(pair, rimRimFromDisk2(pair, scale, face_lower_bound)));
+  if (open()) answer = nearer(answer, rimSearch(pair, face_lower_bound));
+  return answer;
 }
 
 }  // namespace

@@ -46,11 +46,15 @@ enum class Family {
   /// Centres uniform in a ball of radius 3, radii 0.2-1.5, uniform random
   /// orientations (some pairs intersect). known_distance: none.
   random,
-  /// Tilt 1e-12..1e-3 rad (log-uniform) between the normals, in three sub-kinds:
+  /// Tilt 1e-12..1e-3 rad (log-uniform) between the normals, in four sub-kinds:
   /// "face" (projections overlap, disk 2's lowest rim point over disk 1's
   /// interior at d = 1e-10..1, known), "rim_rim" (projections apart, KKT
   /// construction, known), "crossing" (disk 2's projection inside disk 1 and
-  /// plane 1 cutting disk 2 within +-0.9 of its height range: distance 0). The
+  /// plane 1 cutting disk 2 within +-0.9 of its height range: distance 0),
+  /// "rims_crossing" (KKT construction with the separation within 1e-6..1e-2
+  /// rad of disk 1's normal and closer still to disk 2's: the rims cross in
+  /// projection, a thin lens, and the optimum is at one of its corners,
+  /// d = 1e-12..1e-3 times the larger radius, radius ratio up to 100, known). The
   /// stored tilt matches the nominal one to ~eps absolute; in float, tilts below
   /// ~1e-7 are swamped by rounding (the stored disks are parallel or tilted by
   /// rounding), which the known distances' rounding bound accounts for.
@@ -282,15 +286,16 @@ DiskPairCase<S> finish(const std::string& name, const LocalPair& local, const Ma
 /// normal cone at p because cos(psi) > 0); q = p + d w. Disk 2 has normal n2
 /// and centre q - r2 rho2, rho2 = P2(-w)/|P2 w|, so -w is in disk 2's normal
 /// cone at q. Mutual KKT conditions of a convex problem => (p, q) is optimal and
-/// the distance is d. Returns false when |P2 w| is too small (w ~ n2).
+/// the distance is d. Returns false when |P2 w| < min_in_plane (w ~ n2; rho2's
+/// direction, hence c2, has a relative error of ~1e-19 / |P2 w| in long double).
 inline bool rimRimPair(Real r1, Real r2, Real d, Real a, Real psi, const Matrix3R& R2,
-                       LocalPair* out) {
+                       LocalPair* out, Real min_in_plane = Real(0.05)) {
   const Vector3R rho1(std::cos(a), std::sin(a), 0);
   const Vector3R p = r1 * rho1;
   const Vector3R w = std::cos(psi) * rho1 + std::sin(psi) * Vector3R::UnitZ();
   const Vector3R minus_w_in_plane = inPlane(R2, -w);
   const Real len = minus_w_in_plane.norm();
-  if (len < Real(0.05)) return false;
+  if (len < min_in_plane) return false;
   out->r1 = r1;
   out->R1 = Matrix3R::Identity();
   out->c1.setZero();
@@ -359,7 +364,7 @@ void makeNearParallel(int i, Rng& rng, LocalPair* local, std::string* kind) {
   const Real tilt = rng.logUniform(Real(1e-12), Real(1e-3));
   const Real r1 = roundedRadius<S>(rng.uniform(Real(0.3), Real(1.5)));
   const Matrix3R R2 = tiltedFrame(tilt, rng);
-  switch (i % 3) {
+  switch (i % 4) {
     case 0: {  // overlapping projections, separated: face of 1 vs lowest rim point of 2
       const Real r2 = roundedRadius<S>(rng.uniform(Real(0.3), Real(1.5)));
       const Real d = rng.logUniform(Real(1e-10), Real(1));
@@ -374,6 +379,28 @@ void makeNearParallel(int i, Rng& rng, LocalPair* local, std::string* kind) {
       while (!rimRimPair(r1, r2, d, rng.angle(), rng.uniform(Real(-1.2), Real(1.2)), R2, local)) {
       }
       *kind = "rim_rim";
+      break;
+    }
+    case 3: {  // rims crossing in projection: the optimum at a corner of their thin lens
+      // w = sin(beta) rho1 +- cos(beta) z is in disk 1's normal cone at its rim
+      // point; n2 is +-w turned by gamma <= beta, so |P2 w| = sin(gamma) is small
+      // and disk 2's centre lands across rim 1 from p (the projections overlap).
+      const Real r2 = roundedRadius<S>(r1 * rng.logUniform(Real(0.01), Real(1)));
+      const Real beta = rng.logUniform(Real(1e-6), Real(1e-2));
+      const Real gamma = std::max(Real(1e-6), beta * rng.logUniform(Real(1e-4), Real(1)));
+      const Real d = std::max(r1, r2) * rng.logUniform(Real(1e-12), Real(1e-3));
+      const Real a = rng.angle();
+      const Real psi = rng.sign() * (Rng::kPi / 2 - beta);
+      const Vector3R w(std::cos(psi) * std::cos(a), std::cos(psi) * std::sin(a), std::sin(psi));
+      const Vector3R axis = w.cross(rng.unitVector()).normalized();
+      const Vector3R n2 = rng.sign() * (Eigen::AngleAxis<Real>(gamma, axis) * w);
+      rimRimPair(r1, r2, d, a, psi, frameWithNormal(n2, rng), local, Real(0.5e-6));
+      if (rng.uniform01() < 0.5) {  // the small disk first, as often as second
+        std::swap(local->r1, local->r2);
+        std::swap(local->R1, local->R2);
+        std::swap(local->c1, local->c2);
+      }
+      *kind = "rims_crossing";
       break;
     }
     default: {  // crossing: disk 2's projection inside disk 1, plane 1 cuts disk 2
