@@ -80,6 +80,11 @@ constexpr int kMaxRimSearchIterations = 80;
 constexpr double kFirstBracketStep = 1e-9;
 constexpr double kBracketGrowth = 4.0;
 
+/// The certificate tries t1 x t2 only when it is at least this long (the
+/// tangents' sine, for points on the rims): its squares then stay normal, and
+/// its direction is still good to eps / kMinTangentCross.
+constexpr double kMinTangentCross = 1e-8;
+
 /// Iterations are capped: median 3-4 on rim-rim pairs; the ~1% that reach the
 /// cap are flat, near-degenerate optima, handed to the rim search when their
 /// certificate is still open (docs/exact_distance.md, section 4).
@@ -236,6 +241,29 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   return out;
 }
 
+/// The certificate at x (frame 1, on plane 1) and q on disk 2: the best of g
+/// at the face normals, along q - x, and along t1 x t2, the tangents of the
+/// circles about c1 through x and about c2 through q (t1 = n1 x x,
+/// t2 = n2 x (q - c); either sign: g(-w) differs from g(w) only in the sign of
+/// w.c). At a rim-rim optimum the separation lies in both rims' normal planes,
+/// so t1 x t2 is its direction, computed without the cancellation of q - x: for
+/// distances d near rounding, q - x knows its direction only to eps scale / d,
+/// t1 x t2 to eps / sin(t1, t2) (docs/exact_distance.md, section 2).
+double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
+                   double face_lower_bound) {
+  double lower = std::max(face_lower_bound, separationLowerBound(pair, q - x));
+  // Scaled by the radii, so that w's squares stay in double's range at every
+  // length scale (|w| <= 1).
+  const Vec3 t1(-x.y() / pair.r1, x.x() / pair.r1, 0.0);
+  const Vec3 w = t1.cross(pair.R.col(2).cross((q - pair.c) / pair.r2));
+  const double length = w.norm();
+  if (length > kMinTangentCross) {
+    lower = std::max(lower, (std::abs(w.dot(pair.c)) - pair.r1 * pair.inPlane1(w) -
+                             pair.r2 * pair.inPlane2(w)) / length);
+  }
+  return lower;
+}
+
 /// Exact line search along `step` from s: psi is convex along the segment, so
 /// psi'(alpha) = gradient(s + alpha step).step is monotone. Returns alpha *
 /// step for the minimiser over alpha in (0, 1]: the full step when psi'(1) <= 0,
@@ -388,7 +416,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     current.distance = std::sqrt(2.0 * at.psi);
     current.iterations = iteration;
     current.lower_bound =
-        lower ? *lower : std::max(face_lower_bound, separationLowerBound(pair, at.q - current.p));
+        lower ? *lower : certificate(pair, current.p, at.q, face_lower_bound);
     return current;
   };
   for (int iteration = 1; iteration <= kMaxNewtonIterations; ++iteration) {
@@ -445,7 +473,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
                             predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
-      const double lower = std::max(face_lower_bound, separationLowerBound(pair, at.q - x));
+      const double lower = certificate(pair, x, at.q, face_lower_bound);
       if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration, lower);
       // Converged to rounding: the step no longer moves the point. The
       // certificate's own rounding grows like scale * (eps * scale / d)^2 for
@@ -524,7 +552,7 @@ Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
   const PointToDisk2& at = a_wins ? at_a : at_b;
   const Vec3 x(s.x(), s.y(), 0.0);
   return {x, at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
-          std::max(face_lower_bound, separationLowerBound(pair, at.q - x))};
+          certificate(pair, x, at.q, face_lower_bound)};
 }
 
 /// First fallback for rim-rim pairs Newton leaves uncertified: the local
@@ -619,7 +647,7 @@ Solution fromDisk2(const PairInFrame1& pair, const Solution& swapped) {
 Solution rimRimFromDisk2(const PairInFrame1& pair, double scale, double face_lower_bound) {
   const PairInFrame1 swapped = pair.swapped();
   Solution answer = rimRim(swapped, scale, face_lower_bound);
-  if (answer.distance - answer.lower_bound > kFallbackGap * scale) {
+  if (answer.distance - answer.lower_bound > kGapTolerance * scale) {
     answer = nearer(answer, localRimSearch(swapped, answer.p, face_lower_bound));
   }
   return answer;
@@ -652,10 +680,16 @@ Solution solveInFrame1(const PairInFrame1& pair) {
   // every certificate a lower bound: the nearest pair and the largest bound are
   // kept (docs/exact_distance.md, section 4).
   Solution answer = rimRim(pair, scale, face_lower_bound);
-  const auto open = [&] { return answer.distance - answer.lower_bound > kFallbackGap * scale; };
-  if (open()) answer = nearer(answer, localRimSearch(pair, answer.p, face_lower_bound));
-  if (open()) answer = nearer(answer, fromDisk2(pair, rimRimFromDisk2(pair, scale, face_lower_bound)));
-  if (open()) answer = nearer(answer, rimSearch(pair, face_lower_bound));
+  const auto gap_above = [&](double tolerance) {
+    return answer.distance - answer.lower_bound > tolerance * scale;
+  };
+  if (gap_above(kGapTolerance)) {
+    answer = nearer(answer, localRimSearch(pair, answer.p, face_lower_bound));
+  }
+  if (gap_above(kFallbackGap)) {
+    answer = nearer(answer, fromDisk2(pair, rimRimFromDisk2(pair, scale, face_lower_bound)));
+  }
+  if (gap_above(kFallbackGap)) answer = nearer(answer, rimSearch(pair, face_lower_bound));
   return answer;
 }
 

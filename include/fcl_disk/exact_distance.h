@@ -21,7 +21,7 @@ namespace fcl_disk {
 /// step minimising psi's quadratic model over the disk with an exact line
 /// search), stopped by the duality gap between |p - q| and the certificate
 /// g(w) = w.(c2 - c1) - r1|P1 w| - r2|P2 w| (a lower bound for every unit w);
-/// if the gap stays open, a global search along disk 1's rim as fallback.
+/// while the gap stays open, searches along the rims as fallbacks.
 ///
 /// Guarantee (double): |distance - d_true| <= 1e-12 * (r1 + r2 + |c1 - c2|): relative,
 /// at every length scale in range (kMinDiskRadius..kMaxDiskLength; tested
@@ -30,7 +30,9 @@ namespace fcl_disk {
 /// and both points lie on their disks to the same bound plus the rounding of
 /// storing them in world coordinates (ulp(|c_i|)); distance == |p_W2 - p_W1| up
 /// to that rounding. lower_bound is the duality certificate (at the returned
-/// separation direction and at the face normals): certifiedGap() is at most
+/// separation direction, at the face normals and, for rim-rim pairs, along the
+/// cross product of the two rim tangents, which is the separation's direction
+/// at a rim-rim optimum and free of the cancellation in q - p): certifiedGap() is at most
 /// 1e-14 * scale on well-conditioned pairs. For near-degenerate pairs the
 /// certificate is an honest but pessimistic error bar: its direction is known
 /// only to about eps * scale / d (tiny d) or sqrt(eps) (flat optima next to a
@@ -57,8 +59,11 @@ namespace fcl_disk {
 ///   circle is one point). Newton starts on disk 1's rim, towards where disk 2
 ///   comes nearest plane 1 (docs/exact_distance.md, section 4), and stops at a
 ///   certified gap of 1e-14 * scale, at the rounding floor (flat,
-///   near-degenerate optima, e.g. next to a face case), or after 16 iterations;
-///   the best pair found is returned and lower_bound says how well it is proven.
+///   near-degenerate optima, e.g. next to a face case), or after 16 iterations.
+///   While the gap stays open: a local search along disk 1's rim, the same on
+///   disk 2's rim, a global search along disk 1's rim (docs/exact_distance.md,
+///   section 4); the nearest pair found is returned and lower_bound says how
+///   well it is proven.
 /// Invalid input never crashes and never gets a made-up answer: a radius
 /// rejected by isValidDiskRadius() or a pose rejected by isValidDiskPose() (NaN
 /// or infinite entries, lengths outside kMinDiskRadius..kMaxDiskLength, where
