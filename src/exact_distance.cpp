@@ -18,6 +18,7 @@ using internal::Vec2;
 using internal::Vec3;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr double kTwoPi = 6.283185307179586;
 
 /// Newton stops when the certified gap |q - p| - g is below this many scene
 /// sizes: 45 ulps, comfortably under the 1e-12 promise and above the
@@ -169,9 +170,10 @@ std::optional<Solution> faceOfDisk1(const PairInFrame1& pair, double scale) {
   return Solution{p, q, (q - p).norm(), DiskPairFeature::face1_rim2};
 }
 
-/// The certificate g(w_hat) = w_hat.c - r1|P1 w_hat| - r2|P2 w_hat| for unit w_hat.
-double lowerBound(const PairInFrame1& pair, const Vec3& w_hat) {
-  return w_hat.dot(pair.c) - pair.r1 * pair.inPlane1(w_hat) - pair.r2 * pair.inPlane2(w_hat);
+/// The certificate g(w) = w.c - r1|P1 w| - r2|P2 w|: a lower bound of the
+/// distance for unit w, positively homogeneous (callers divide by |w|).
+double lowerBound(const PairInFrame1& pair, const Vec3& w) {
+  return w.dot(pair.c) - pair.r1 * pair.inPlane1(w) - pair.r2 * pair.inPlane2(w);
 }
 
 /// The certificate at the face normals +-n1, +-n2, where g has its kinks: there
@@ -179,13 +181,6 @@ double lowerBound(const PairInFrame1& pair, const Vec3& w_hat) {
 /// itself than by a slightly misdirected separation direction. Constant per pair.
 double faceLowerBound(const PairInFrame1& pair) {
   return std::max({0.0, pair.disk2ClearanceOfPlane1(), pair.disk1ClearanceOfPlane2()});
-}
-
-/// The certificate along the separation q - p of a pair (frame 1). g is
-/// positively homogeneous, so g(w / |w|) = g(w) / |w|: one division.
-double separationLowerBound(const PairInFrame1& pair, const Vec3& separation) {
-  const double length = separation.norm();
-  return length > 0.0 ? lowerBound(pair, separation) / length : 0.0;
 }
 
 /// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1, with its gradient
@@ -251,19 +246,21 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
 /// t1 x t2 to eps / sin(t1, t2) (docs/exact_distance.md, section 2).
 double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
                    double face_lower_bound) {
-  double lower = std::max(face_lower_bound, separationLowerBound(pair, q - x));
+  // g is positively homogeneous, g(w / |w|) = g(w) / |w|: one division each.
+  const Vec3 separation = q - x;
+  const double distance = separation.norm();
+  double lower = face_lower_bound;
+  if (distance > 0.0) lower = std::max(lower, lowerBound(pair, separation) / distance);
   // Already within Newton's target of |q - x|: nothing better is needed (the
   // usual case; this saves the second direction on the iteration's exit path).
-  if ((q - x).norm() - lower <= kGapTolerance * pair.scale()) return lower;
+  if (distance - lower <= kGapTolerance * pair.scale()) return lower;
   // Scaled by the radii, so that w's squares stay in double's range at every
-  // length scale (|w| <= 1).
+  // length scale (|w| <= 1); oriented towards disk 2 (w.c >= 0).
   const Vec3 t1(-x.y() / pair.r1, x.x() / pair.r1, 0.0);
-  const Vec3 w = t1.cross(pair.R.col(2).cross((q - pair.c) / pair.r2));
+  Vec3 w = t1.cross(pair.R.col(2).cross((q - pair.c) / pair.r2));
+  if (w.dot(pair.c) < 0.0) w = -w;
   const double length = w.norm();
-  if (length > kMinTangentCross) {
-    lower = std::max(lower, (std::abs(w.dot(pair.c)) - pair.r1 * pair.inPlane1(w) -
-                             pair.r2 * pair.inPlane2(w)) / length);
-  }
+  if (length > kMinTangentCross) lower = std::max(lower, lowerBound(pair, w) / length);
   return lower;
 }
 
@@ -534,7 +531,6 @@ Vec2 rimPoint(const PairInFrame1& pair, double theta) {
 Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
                             double face_lower_bound) {
   constexpr double kInvPhi = 0.6180339887498949;
-  constexpr double kTwoPi = 6.283185307179586;
   double a = hi - kInvPhi * (hi - lo), b = lo + kInvPhi * (hi - lo);
   PointToDisk2 at_a = evaluate(pair, rimPoint(pair, a)), at_b = evaluate(pair, rimPoint(pair, b));
   for (int iteration = 0;
@@ -563,7 +559,7 @@ Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
 /// bracketed by steps growing from kFirstBracketStep in the direction psi
 /// decreases, then refined by goldenSectionOnRim.
 Solution localRimSearch(const PairInFrame1& pair, const Vec3& start, double face_lower_bound) {
-  constexpr double kHalfTurn = 3.141592653589793;
+  constexpr double kHalfTurn = kTwoPi / 2;
   const double theta0 = std::atan2(start.y(), start.x());
   const double psi0 = evaluate(pair, rimPoint(pair, theta0)).psi;
   // Downhill side: the first step that lowers psi (none: theta0 is a minimum
@@ -605,7 +601,6 @@ Solution localRimSearch(const PairInFrame1& pair, const Vec3& start, double face
 /// minima by golden-section search inside the bracket of their neighbouring
 /// samples (the lowest refined one is kept).
 Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
-  constexpr double kTwoPi = 6.283185307179586;
   constexpr double kStep = kTwoPi / kRimSamples;
   std::array<double, kRimSamples> psi{};
   for (int k = 0; k < kRimSamples; ++k) psi[k] = evaluate(pair, rimPoint(pair, kStep * k)).psi;
