@@ -288,11 +288,17 @@ DiskPairCase<S> finish(const std::string& name, const LocalPair& local, const Ma
 /// cone at q. Mutual KKT conditions of a convex problem => (p, q) is optimal and
 /// the distance is d. Returns false when |P2 w| < min_in_plane (w ~ n2; rho2's
 /// direction, hence c2, has a relative error of ~1e-19 / |P2 w| in long double).
+/// w = cos(psi) rho1 + sin(psi) z, rho1 = (cos a, sin a, 0): the separation
+/// direction of rimRimPair, in disk 1's normal cone at its rim point at angle a.
+inline Vector3R rimRimSeparation(Real a, Real psi) {
+  return Vector3R(std::cos(psi) * std::cos(a), std::cos(psi) * std::sin(a), std::sin(psi));
+}
+
 inline bool rimRimPair(Real r1, Real r2, Real d, Real a, Real psi, const Matrix3R& R2,
                        LocalPair* out, Real min_in_plane = Real(0.05)) {
   const Vector3R rho1(std::cos(a), std::sin(a), 0);
   const Vector3R p = r1 * rho1;
-  const Vector3R w = std::cos(psi) * rho1 + std::sin(psi) * Vector3R::UnitZ();
+  const Vector3R w = rimRimSeparation(a, psi);
   const Vector3R minus_w_in_plane = inPlane(R2, -w);
   const Real len = minus_w_in_plane.norm();
   if (len < min_in_plane) return false;
@@ -391,9 +397,10 @@ void makeNearParallel(int i, Rng& rng, LocalPair* local, std::string* kind) {
       const Real d = std::max(r1, r2) * rng.logUniform(Real(1e-12), Real(1e-3));
       const Real a = rng.angle();
       const Real psi = rng.sign() * (Rng::kPi / 2 - beta);
-      const Vector3R w(std::cos(psi) * std::cos(a), std::cos(psi) * std::sin(a), std::sin(psi));
+      const Vector3R w = rimRimSeparation(a, psi);
       const Vector3R axis = w.cross(rng.unitVector()).normalized();
       const Vector3R n2 = rng.sign() * (Eigen::AngleAxis<Real>(gamma, axis) * w);
+      // Always built: |P2 w| = sin(gamma) >= sin(1e-6) is above the 0.5e-6 minimum.
       rimRimPair(r1, r2, d, a, psi, frameWithNormal(n2, rng), local, Real(0.5e-6));
       if (rng.uniform01() < 0.5) {  // the small disk first, as often as second
         std::swap(local->r1, local->r2);

@@ -401,36 +401,71 @@ TEST(RimsCrossing, FuzzFoundPairBothOrders) {
 }
 
 // The class of that pair: near_parallel's rims_crossing cases (disk_families.h),
-// many more than the family tests draw, each in both orders, against the
-// constructed distance. Before the local rim search (exact_distance.cpp) 3 of
+// many more than the family tests draw, each as given, with the disks swapped
+// and under a common rigid motion, against the constructed distance: the
+// distance, both points on their disks, |p - q| == distance and the certificate
+// below the distance. Before the local rim search (exact_distance.cpp) 3 of
 // these 4000 double pairs failed, by up to 1.5e-11 * scale.
 template <typename S>
 void checkRimsCrossing(double relative_tolerance) {
   constexpr int kNearParallelCases = 16000;  // a quarter are rims_crossing
+  using Pose = fcl::Transform3<S>;
   FailureLog log(std::string("exact<") + (sizeof(S) == 8 ? "double" : "float") +
-                 "> rims_crossing, both orders");
+                 "> rims_crossing: as given, swapped, moved");
+  Pose motion = Pose::Identity();
+  motion.linear() = Eigen::Quaternion<S>(S(0.3), S(-0.5), S(0.7), S(0.4)).normalized().toRotationMatrix();
+  motion.translation() = fcl::Vector3<S>(S(3), S(-2), S(5));
+  const double eps = std::numeric_limits<S>::epsilon();
   int checked = 0;
   for (const auto& c : fcl_disk_families::makeFamily<S>(Family::near_parallel,
                                                          kNearParallelCases, kSeed)) {
     if (c.name.find("/rims_crossing/") == std::string::npos) continue;
     ++checked;
+    DiskPairCase<S> moved = c;
+    moved.X_W1 = motion * c.X_W1;
+    moved.X_W2 = motion * c.X_W2;
+    // The moved poses are rounded to S once more.
     const double tolerance = relative_tolerance * fcl_disk_families::sceneScale(c) +
-                             fcl_disk_families::poseRoundingBound(c);
-    const double forward = double(fcl_disk::exactDiskDistance<S>(c.r1, c.X_W1, c.r2, c.X_W2).distance);
-    const double swapped = double(fcl_disk::exactDiskDistance<S>(c.r2, c.X_W2, c.r1, c.X_W1).distance);
+                             fcl_disk_families::poseRoundingBound(c) +
+                             fcl_disk_families::poseRoundingBound(moved);
+    const double world_rounding =
+        kWorldRoundingEps * eps * std::max(worldMagnitude(c), worldMagnitude(moved));
     const double known = double(c.known_distance);
-    if (!(std::fabs(forward - known) <= tolerance && std::fabs(swapped - known) <= tolerance)) {
-      std::ostringstream m;
-      m << std::setprecision(17) << "known " << known << ", got " << forward << " and swapped "
-        << swapped << " (tolerance " << tolerance << ") " << describe(c);
-      log.add(m.str());
+    struct Query {
+      const char* name;
+      S r1;
+      const Pose& X_W1;
+      S r2;
+      const Pose& X_W2;
+    };
+    for (const Query& query : {Query{"as given", c.r1, c.X_W1, c.r2, c.X_W2},
+                               Query{"swapped", c.r2, c.X_W2, c.r1, c.X_W1},
+                               Query{"moved", c.r1, moved.X_W1, c.r2, moved.X_W2}}) {
+      const auto r = fcl_disk::exactDiskDistance<S>(query.r1, query.X_W1, query.r2, query.X_W2);
+      const double d = double(r.distance);
+      const double off1 = double(fcl_disk_reference::referencePointToDisk(
+          toReal<S>(r.p_W1), fcl_disk_reference::makeRefDisk(query.X_W1, query.r1)));
+      const double off2 = double(fcl_disk_reference::referencePointToDisk(
+          toReal<S>(r.p_W2), fcl_disk_reference::makeRefDisk(query.X_W2, query.r2)));
+      const double pair_length = double((toReal<S>(r.p_W2) - toReal<S>(r.p_W1)).norm());
+      if (!(std::fabs(d - known) <= tolerance && off1 <= tolerance + world_rounding &&
+            off2 <= tolerance + world_rounding &&
+            std::fabs(pair_length - d) <= tolerance + 2 * world_rounding &&
+            double(r.lower_bound) <= known + tolerance)) {
+        std::ostringstream m;
+        m << std::setprecision(17) << query.name << ": known " << known << ", distance " << d
+          << ", points off their disks by " << off1 << " and " << off2 << ", |p - q| "
+          << pair_length << ", lower_bound " << double(r.lower_bound) << " (tolerance "
+          << tolerance << ") " << describe(c);
+        log.add(m.str());
+      }
     }
   }
   EXPECT_EQ(checked, kNearParallelCases / 4);
 }
 
-TEST(RimsCrossing, ManyPairsBothOrdersDouble) { checkRimsCrossing<double>(kDoubleRelativeTolerance); }
-TEST(RimsCrossing, ManyPairsBothOrdersFloat) {
+TEST(RimsCrossing, ManyPairsSwappedAndMovedDouble) { checkRimsCrossing<double>(kDoubleRelativeTolerance); }
+TEST(RimsCrossing, ManyPairsSwappedAndMovedFloat) {
   checkRimsCrossing<float>(kFloatEpsMultiple * std::numeric_limits<float>::epsilon());
 }
 
