@@ -244,16 +244,27 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
 /// so t1 x t2 is its direction, computed without the cancellation of q - x: for
 /// distances d near rounding, q - x knows its direction only to eps scale / d,
 /// t1 x t2 to eps / sin(t1, t2) (docs/exact_distance.md, section 2).
-double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
-                   double face_lower_bound) {
-  // g is positively homogeneous, g(w / |w|) = g(w) / |w|: one division each.
+///
+/// Newton's stopping test uses separationCertificate alone: a gap closed by
+/// t1 x t2 says the distance is right, not that x and q are (near a face case
+/// the optimum is flat, and a distance 2e-14 too long can come with points
+/// whose separation is 1e-6 rad off the optimal direction); closing it along
+/// q - x proves the points too.
+double separationCertificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
+                             double face_lower_bound) {
+  // g is positively homogeneous, g(w / |w|) = g(w) / |w|: one division.
   const Vec3 separation = q - x;
   const double distance = separation.norm();
-  double lower = face_lower_bound;
-  if (distance > 0.0) lower = std::max(lower, lowerBound(pair, separation) / distance);
+  return distance > 0.0 ? std::max(face_lower_bound, lowerBound(pair, separation) / distance)
+                        : face_lower_bound;
+}
+
+double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
+                   double face_lower_bound) {
+  double lower = separationCertificate(pair, x, q, face_lower_bound);
   // Already within Newton's target of |q - x|: nothing better is needed (the
   // usual case; this saves the second direction on the iteration's exit path).
-  if (distance - lower <= kGapTolerance * pair.scale()) return lower;
+  if ((q - x).norm() - lower <= kGapTolerance * pair.scale()) return lower;
   // Scaled by the radii, so that w's squares stay in double's range at every
   // length scale (|w| <= 1); oriented towards disk 2 (w.c >= 0).
   const Vec3 t1(-x.y() / pair.r1, x.x() / pair.r1, 0.0);
@@ -473,14 +484,13 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
                             predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
-      const double lower = certificate(pair, x, at.q, face_lower_bound);
+      const double lower = separationCertificate(pair, x, at.q, face_lower_bound);
       if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration, lower);
       // Converged to rounding: the step no longer moves the point. The
-      // certificate's own rounding grows like scale * (eps * scale / d)^2 for
-      // small distances d, so it may not reach kGapTolerance; it is reported.
-      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) {
-        return finish(iteration, lower);
-      }
+      // certificate's own rounding along q - x grows like scale * (eps * scale
+      // / d)^2 for small distances d, so it may not reach kGapTolerance; the
+      // full certificate (with t1 x t2) is reported.
+      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) return finish(iteration);
     }
     PointToDisk2 next;
     Vec2 s_next;
