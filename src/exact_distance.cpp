@@ -79,6 +79,16 @@ constexpr int kMaxRimSearchIterations = 80;
 /// within an angle ~d / r (docs/exact_distance.md, section 4); the first step is
 /// far below any such width that double resolves.
 constexpr double kFirstBracketStep = 1e-9;
+
+/// Newton steps for a lens corner and for the rim-rim candidate there: both
+/// converge quadratically from their starts, so a handful suffice.
+constexpr int kMaxCornerIterations = 8;
+
+/// The direction of q - x is known to about 2 eps scale / d (both points carry
+/// rounding of eps scale): a lens-corner answer's points count as proven when
+/// the certificate along q - x closes up to (r1 + r2) kSeparationRounding eps
+/// scale / d, the term exact_distance.h documents for small distances.
+constexpr double kSeparationRounding = 8.0;
 constexpr double kBracketGrowth = 4.0;
 
 /// The certificate tries t1 x t2 only when it is at least this long (the
@@ -205,6 +215,23 @@ struct PointToDisk2 {
   }
 };
 
+/// The nearest point of disk 2's rim circle to a point whose disk-2-plane
+/// coordinates are y (rho^2 = |y|^2 > 0), and the Hessian of half the squared
+/// distance to the circle: I - (r2/rho) t t^T with t = n2 x e, e = y / rho
+/// (frame 1). Fills q and the Hessian of `out`.
+void towardsRim2(const PairInFrame1& pair, const Vec2& y, double rho_squared, PointToDisk2* out) {
+  // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division run
+  // side by side instead of one after the other (this is on the rim
+  // iteration's critical path).
+  const double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
+  const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
+  out->q = pair.c + pair.r2 * e;
+  const Vec3 t = pair.R.col(2).cross(e);
+  out->hessian_identity = 1.0;
+  out->hessian_rank_one = -pair.r2 * inverse_rho;
+  out->hessian_direction = Vec2(t.x(), t.y());
+}
+
 PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   const Vec3 x(s.x(), s.y(), 0.0);
   const Vec3 from_c2 = x - pair.c;
@@ -217,19 +244,24 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
     out.hessian_identity = 0.0;
     out.hessian_rank_one = 1.0;
     out.hessian_direction = Vec2(pair.R(0, 2), pair.R(1, 2));
-  } else {  // nearest point on disk 2's rim, radial direction e
-    // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division
-    // run side by side instead of one after the other (this is on the rim
-    // iteration's critical path).
-    const double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
-    const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
-    out.q = pair.c + pair.r2 * e;
-    // Hessian of dist^2/2 to a circle's disk outside it: I - (r2/rho) t t^T, t = n2 x e.
-    const Vec3 t = pair.R.col(2).cross(e);
-    out.hessian_identity = 1.0;
-    out.hessian_rank_one = -pair.r2 * inverse_rho;
-    out.hessian_direction = Vec2(t.x(), t.y());
+  } else {  // nearest point on disk 2's rim
+    towardsRim2(pair, y, rho_squared, &out);
   }
+  const Vec3 residual = x - out.q;
+  out.psi = 0.5 * residual.squaredNorm();
+  out.gradient = residual.head<2>();
+  return out;
+}
+
+/// psi's rim branch at x = (s, 0), used everywhere: half the squared distance
+/// from x to disk 2's rim circle, which is smooth wherever x is off disk 2's
+/// axis (inside the rim's projection it exceeds psi).
+PointToDisk2 evaluateToRim2(const PairInFrame1& pair, const Vec2& s) {
+  const Vec3 x(s.x(), s.y(), 0.0);
+  const Vec3 from_c2 = x - pair.c;
+  const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));
+  PointToDisk2 out;
+  towardsRim2(pair, y, y.squaredNorm(), &out);
   const Vec3 residual = x - out.q;
   out.psi = 0.5 * residual.squaredNorm();
   out.gradient = residual.head<2>();
@@ -564,6 +596,121 @@ Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
           certificate(pair, x, at.q, face_lower_bound)};
 }
 
+/// The better of two rim-rim answers: the nearer pair, and the larger of the
+/// two certificates (both are lower bounds of the same distance).
+Solution nearer(const Solution& kept, const Solution& other) {
+  Solution best = other.distance < kept.distance ? other : kept;
+  best.iterations = kept.iterations;
+  best.lower_bound = std::max(kept.lower_bound, other.lower_bound);
+  return best;
+}
+
+/// Where disk 1's rim crosses the projection of disk 2's rim onto plane 1: the
+/// corners of the lens in which the two projections overlap. Newton crawls
+/// when the optimum sits at such a corner (nearly coplanar rims crossing in
+/// projection, docs/exact_distance.md, section 4). Starts from the crossings of
+/// rim 1 with the circle of radius r2 about c's projection (exact for parallel
+/// planes), then Newton on g(theta) = rho(theta) - r2, rho being the distance of
+/// rim 1's point from disk 2's axis. Writes the angles found; returns how many.
+int lensCorners(const PairInFrame1& pair, double scale, std::array<double, 2>* corners) {
+  const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
+  if (!(D > 0.0)) return 0;
+  // Law of cosines, written without the cancellation of r1^2 + D^2 - r2^2.
+  const double cos_half_angle =
+      (pair.r1 * pair.r1 + (D - pair.r2) * (D + pair.r2)) / (2.0 * pair.r1 * D);
+  if (!(std::abs(cos_half_angle) <= 1.0)) return 0;
+  const double towards_c = std::atan2(pair.c.y(), pair.c.x());
+  const double half_angle = std::acos(cos_half_angle);
+  int count = 0;
+  for (const double side : {1.0, -1.0}) {
+    double theta = towards_c + side * half_angle;
+    for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
+      const Vec2 radial(std::cos(theta), std::sin(theta));
+      const Vec3 from_c2 = Vec3(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0) - pair.c;
+      const Vec3 tangent(-pair.r1 * radial.y(), pair.r1 * radial.x(), 0.0);  // dx / dtheta
+      const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));
+      const Vec2 y_prime(pair.R.col(0).dot(tangent), pair.R.col(1).dot(tangent));
+      const double rho = y.norm();
+      const double slope = y.dot(y_prime);  // rho * g'(theta)
+      if (!(rho > 0.0) || slope == 0.0) break;
+      const double step = -(rho - pair.r2) * rho / slope;
+      if (!(std::abs(step) <= kMaxRimStep)) break;
+      theta += step;
+      if (std::abs(step) * pair.r1 <= kStepAtRounding * scale) break;
+    }
+    (*corners)[count++] = theta;
+  }
+  return count;
+}
+
+/// A rim-rim candidate at a lens corner: Newton along rim 1 from `theta` on
+/// phi, half the squared distance to disk 2's rim circle, which is smooth
+/// across the corner (where psi's curvature jumps). Always a feasible pair (a
+/// point of each rim); the certificate says whether it is the optimum.
+Solution rimRimFromCorner(const PairInFrame1& pair, double theta, double scale,
+                          double face_lower_bound) {
+  PointToDisk2 at = evaluateToRim2(pair, rimPoint(pair, theta));
+  for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
+    const Vec2 radial(std::cos(theta), std::sin(theta));
+    const Vec2 tangent(-radial.y(), radial.x());
+    // As in rimRim: phi' = r1 sigma, phi'' = r1 kappa, here with the rim's
+    // curvature term unclamped (phi is minimised along the circle, not the disk).
+    const double sigma = at.gradient.dot(tangent);
+    const double kappa = pair.r1 * at.curvatureAlong(tangent) - at.gradient.dot(radial);
+    if (!(kappa > 0.0)) break;
+    const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
+    const PointToDisk2 next = evaluateToRim2(pair, rimPoint(pair, theta + dtheta));
+    if (!(next.psi < at.psi)) break;  // converged to rounding
+    theta += dtheta, at = next;
+    if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
+  }
+  const Vec2 s = rimPoint(pair, theta);
+  const Vec3 x(s.x(), s.y(), 0.0);
+  return {x, at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
+          certificate(pair, x, at.q, face_lower_bound)};
+}
+
+/// Whether a rim-rim answer's points, not only its distance, are proven: the
+/// certificate (with t1 x t2) proves the distance; along the points' own
+/// separation q - x it must close as well, up to what the rounding of that
+/// direction (kSeparationRounding eps scale / d) costs at g's kinks, where g is
+/// Lipschitz with constant r1 + r2. Without the second test a flat optimum
+/// could be reported with the right distance and points off the optimal pair
+/// (docs/fuzzing.md, finding 8).
+bool pointsProven(const PairInFrame1& pair, const Solution& answer, double scale,
+                  double face_lower_bound) {
+  const double tolerance = kGapTolerance * scale;
+  if (!(answer.distance - answer.lower_bound <= tolerance)) return false;
+  const double direction_rounding =
+      answer.distance > 0.0
+          ? (pair.r1 + pair.r2) * kSeparationRounding * kEps * scale / answer.distance
+          : 0.0;
+  return answer.distance - separationCertificate(pair, answer.p, answer.q, face_lower_bound) <=
+         tolerance + direction_rounding;
+}
+
+/// The rim-rim candidates at the lens corners, for planes within kTiltedStart
+/// (sine) of parallel whose rims cross in projection (nullopt otherwise): the
+/// first whose points are proven (`proven`), else the nearer of the two.
+struct CornerAnswer {
+  Solution solution;
+  bool proven;
+};
+
+std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double scale,
+                                               double face_lower_bound) {
+  if (!(pair.s < kTiltedStart)) return std::nullopt;
+  std::array<double, 2> corners;
+  const int count = lensCorners(pair, scale, &corners);
+  std::optional<CornerAnswer> best;
+  for (int k = 0; k < count; ++k) {
+    const Solution found = rimRimFromCorner(pair, corners[k], scale, face_lower_bound);
+    if (pointsProven(pair, found, scale, face_lower_bound)) return CornerAnswer{found, true};
+    best = CornerAnswer{best ? nearer(best->solution, found) : found, false};
+  }
+  return best;
+}
+
 /// First fallback for rim-rim pairs Newton leaves uncertified: the local
 /// minimum of psi along disk 1's rim next to `start` (Newton's answer, frame 1),
 /// bracketed by steps growing from kFirstBracketStep in the direction psi
@@ -634,15 +781,6 @@ Solution rimSearch(const PairInFrame1& pair, double face_lower_bound) {
   return best;
 }
 
-/// The better of two rim-rim answers: the nearer pair, and the larger of the
-/// two certificates (both are lower bounds of the same distance).
-Solution nearer(const Solution& kept, const Solution& other) {
-  Solution best = other.distance < kept.distance ? other : kept;
-  best.iterations = kept.iterations;
-  best.lower_bound = std::max(kept.lower_bound, other.lower_bound);
-  return best;
-}
-
 /// A solution of pair.swapped() (frame 2, disk 2 first) mapped back to frame 1.
 Solution fromDisk2(const PairInFrame1& pair, const Solution& swapped) {
   Solution out = swapped;
@@ -687,10 +825,13 @@ Solution solveInFrame1(const PairInFrame1& pair) {
   // and the global search along rim 1. Every answer is a feasible pair and
   // every certificate a lower bound: the nearest pair and the largest bound are
   // kept (docs/exact_distance.md, section 4).
+  const std::optional<CornerAnswer> corner = rimRimAtLensCorner(pair, scale, face_lower_bound);
+  if (corner && corner->proven) return corner->solution;
   Solution answer = rimRim(pair, scale, face_lower_bound);
   const auto gap_above = [&](double tolerance) {
     return answer.distance - answer.lower_bound > tolerance * scale;
   };
+  if (corner) answer = nearer(answer, corner->solution);
   if (gap_above(kGapTolerance)) {
     answer = nearer(answer, localRimSearch(pair, answer.p, face_lower_bound));
   }
