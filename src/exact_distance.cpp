@@ -80,8 +80,13 @@ constexpr int kMaxRimSearchIterations = 80;
 /// far below any such width that double resolves.
 constexpr double kFirstBracketStep = 1e-9;
 
-/// Newton steps for a lens corner and for the rim-rim candidate there: both
-/// converge quadratically from their starts, so a handful suffice.
+/// A lens corner's start (the crossing for parallel planes, off by O(s^2 r2)
+/// otherwise) is refined by kCornerRefinements Newton steps. It only starts
+/// the candidate's own iteration, which minimises a smooth function: of 79,545
+/// lens-corner queries (docs/exact_distance.md, section 4) 429 stayed unproven
+/// with no refinement, 84 with one, 88 and 83 with two and three. The
+/// candidate's Newton iteration then takes at most kMaxCornerIterations steps.
+constexpr int kCornerRefinements = 1;
 constexpr int kMaxCornerIterations = 8;
 
 /// The direction of q - x is known to about 2 eps scale / d (both points carry
@@ -606,52 +611,56 @@ Solution nearer(const Solution& kept, const Solution& other) {
 }
 
 /// Where disk 1's rim crosses the projection of disk 2's rim onto plane 1: the
-/// corners of the lens in which the two projections overlap. Newton crawls
-/// when the optimum sits at such a corner (nearly coplanar rims crossing in
-/// projection, docs/exact_distance.md, section 4). Starts from the crossings of
-/// rim 1 with the circle of radius r2 about c's projection (exact for parallel
-/// planes), then Newton on g(theta) = rho(theta) - r2, rho being the distance of
-/// rim 1's point from disk 2's axis. Writes the angles found; returns how many.
-int lensCorners(const PairInFrame1& pair, double scale, std::array<double, 2>* corners) {
+/// corners of the lens in which the two projections overlap, as directions
+/// from c1 (unit vectors in plane 1). Newton crawls when the optimum sits at
+/// such a corner (nearly coplanar rims crossing in projection,
+/// docs/exact_distance.md, section 4). Starts from the crossings of rim 1 with
+/// the circle of radius r2 about c's projection (exact for parallel planes),
+/// refined by Newton in the rim angle on rho(theta) - r2, rho being the
+/// distance of rim 1's point from disk 2's axis. Returns how many were written
+/// (0 or 2).
+int lensCorners(const PairInFrame1& pair, double scale, std::array<Vec2, 2>* corners) {
   const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
   if (!(D > 0.0)) return 0;
   // Law of cosines, written without the cancellation of r1^2 + D^2 - r2^2.
   const double cos_half_angle =
       (pair.r1 * pair.r1 + (D - pair.r2) * (D + pair.r2)) / (2.0 * pair.r1 * D);
   if (!(std::abs(cos_half_angle) <= 1.0)) return 0;
-  const double towards_c = std::atan2(pair.c.y(), pair.c.x());
-  const double half_angle = std::acos(cos_half_angle);
+  const double sin_half_angle = std::sqrt((1.0 - cos_half_angle) * (1.0 + cos_half_angle));
+  const Vec2 towards_c(pair.c.x() / D, pair.c.y() / D);
+  const Vec2 across(-towards_c.y(), towards_c.x());
   int count = 0;
   for (const double side : {1.0, -1.0}) {
-    double theta = towards_c + side * half_angle;
-    for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
-      const Vec2 radial(std::cos(theta), std::sin(theta));
+    Vec2 radial = cos_half_angle * towards_c + (side * sin_half_angle) * across;
+    for (int refinement = 0; refinement < kCornerRefinements; ++refinement) {
+      const Vec2 tangent(-radial.y(), radial.x());
       const Vec3 from_c2 = Vec3(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0) - pair.c;
-      const Vec3 tangent(-pair.r1 * radial.y(), pair.r1 * radial.x(), 0.0);  // dx / dtheta
+      const Vec3 dx_dtheta(pair.r1 * tangent.x(), pair.r1 * tangent.y(), 0.0);
       const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));
-      const Vec2 y_prime(pair.R.col(0).dot(tangent), pair.R.col(1).dot(tangent));
+      const Vec2 dy_dtheta(pair.R.col(0).dot(dx_dtheta), pair.R.col(1).dot(dx_dtheta));
       const double rho = y.norm();
-      const double slope = y.dot(y_prime);  // rho * g'(theta)
+      const double slope = y.dot(dy_dtheta);  // rho * d rho / d theta
       if (!(rho > 0.0) || slope == 0.0) break;
-      const double step = -(rho - pair.r2) * rho / slope;
-      if (!(std::abs(step) <= kMaxRimStep)) break;
-      theta += step;
-      if (std::abs(step) * pair.r1 <= kStepAtRounding * scale) break;
+      const double dtheta = -(rho - pair.r2) * rho / slope;
+      if (!(std::abs(dtheta) <= kMaxRimStep)) break;
+      const Vec2 rotation = cayleyRotation(dtheta);
+      radial = rotation.x() * radial + rotation.y() * tangent;
+      if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
     }
-    (*corners)[count++] = theta;
+    (*corners)[count++] = radial;
   }
   return count;
 }
 
-/// A rim-rim candidate at a lens corner: Newton along rim 1 from `theta` on
-/// phi, half the squared distance to disk 2's rim circle, which is smooth
-/// across the corner (where psi's curvature jumps). Always a feasible pair (a
-/// point of each rim); the certificate says whether it is the optimum.
-Solution rimRimFromCorner(const PairInFrame1& pair, double theta, double scale,
+/// A rim-rim candidate at a lens corner: Newton along rim 1 from the rim point
+/// in direction `radial` on phi, half the squared distance to disk 2's rim
+/// circle, which is smooth across the corner (where psi's curvature jumps).
+/// Always a feasible pair (a point of each rim); the certificate says whether
+/// it is the optimum.
+Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
                           double face_lower_bound) {
-  PointToDisk2 at = evaluateToRim2(pair, rimPoint(pair, theta));
+  PointToDisk2 at = evaluateToRim2(pair, pair.r1 * radial);
   for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
-    const Vec2 radial(std::cos(theta), std::sin(theta));
     const Vec2 tangent(-radial.y(), radial.x());
     // As in rimRim: phi' = r1 sigma, phi'' = r1 kappa, here with the rim's
     // curvature term unclamped (phi is minimised along the circle, not the disk).
@@ -659,13 +668,14 @@ Solution rimRimFromCorner(const PairInFrame1& pair, double theta, double scale,
     const double kappa = pair.r1 * at.curvatureAlong(tangent) - at.gradient.dot(radial);
     if (!(kappa > 0.0)) break;
     const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
-    const PointToDisk2 next = evaluateToRim2(pair, rimPoint(pair, theta + dtheta));
+    const Vec2 rotation = cayleyRotation(dtheta);
+    const Vec2 radial_next = rotation.x() * radial + rotation.y() * tangent;
+    const PointToDisk2 next = evaluateToRim2(pair, pair.r1 * radial_next);
     if (!(next.psi < at.psi)) break;  // converged to rounding
-    theta += dtheta, at = next;
+    radial = radial_next, at = next;
     if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
   }
-  const Vec2 s = rimPoint(pair, theta);
-  const Vec3 x(s.x(), s.y(), 0.0);
+  const Vec3 x(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0);
   return {x, at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
           certificate(pair, x, at.q, face_lower_bound)};
 }
@@ -700,7 +710,7 @@ struct CornerAnswer {
 std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double scale,
                                                double face_lower_bound) {
   if (!(pair.s < kTiltedStart)) return std::nullopt;
-  std::array<double, 2> corners;
+  std::array<Vec2, 2> corners;
   const int count = lensCorners(pair, scale, &corners);
   std::optional<CornerAnswer> best;
   for (int k = 0; k < count; ++k) {
