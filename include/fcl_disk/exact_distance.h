@@ -16,7 +16,9 @@ namespace fcl_disk {
 ///
 /// Method (docs/exact_distance.md): (1) a closed-form intersection test; (2) the
 /// two closed-form face cases, accepted only when their optimality (KKT)
-/// conditions hold; (3) otherwise the rim-rim case: Newton's method on the
+/// conditions hold; (3) otherwise the rim-rim case: for nearly parallel planes
+/// whose rims cross in projection, candidates at the corners of the lens the
+/// projections overlap in, returned when certified; else Newton's method on the
 /// convex psi(p) = dist(p, K2)^2 / 2 over disk 1 (Newton along the rim, or a
 /// step minimising psi's quadratic model over the disk with an exact line
 /// search), stopped by the duality gap between |p - q| and the certificate
@@ -56,7 +58,11 @@ namespace fcl_disk {
 /// - Face cases: when several extreme rim points tie (never, unless the planes
 ///   are parallel) the +u direction of the other disk is used.
 /// - Rim-rim: the optimal pair is unique (a convex set of optimal points on a
-///   circle is one point). Newton starts on disk 1's rim, towards where disk 2
+///   circle is one point). For planes within sin 0.1 of parallel whose rims
+///   cross in projection, a pair of rim points near each crossing is tried
+///   first and returned when its certificate closes, along t1 x t2 and along
+///   its own separation (up to the rounding of that direction).
+///   Newton starts on disk 1's rim, towards where disk 2
 ///   comes nearest plane 1 (docs/exact_distance.md, section 4), and stops at a
 ///   certified gap of 1e-14 * scale, at the rounding floor (flat,
 ///   near-degenerate optima, e.g. next to a face case), or after 16 iterations.
