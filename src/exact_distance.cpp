@@ -79,6 +79,7 @@ constexpr int kMaxRimSearchIterations = 80;
 /// within an angle ~d / r (docs/exact_distance.md, section 4); the first step is
 /// far below any such width that double resolves.
 constexpr double kFirstBracketStep = 1e-9;
+constexpr double kBracketGrowth = 4.0;
 
 /// A lens corner's start (the crossing for parallel planes, off by O(s^2 r2)
 /// otherwise) is refined by kCornerRefinements Newton steps. It only starts
@@ -94,7 +95,6 @@ constexpr int kMaxCornerIterations = 8;
 /// the certificate along q - x closes up to (r1 + r2) kSeparationRounding eps
 /// scale / d, the term exact_distance.h documents for small distances.
 constexpr double kSeparationRounding = 8.0;
-constexpr double kBracketGrowth = 4.0;
 
 /// The certificate tries t1 x t2 only when it is at least this long (the
 /// tangents' sine, for points on the rims): its squares then stay normal, and
@@ -258,9 +258,9 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   return out;
 }
 
-/// psi's rim branch at x = (s, 0), used everywhere: half the squared distance
-/// from x to disk 2's rim circle, which is smooth wherever x is off disk 2's
-/// axis (inside the rim's projection it exceeds psi).
+/// Half the squared distance from x = (s, 0) to disk 2's rim circle: psi's
+/// rim branch, continued over disk 2's face (where it exceeds psi). Smooth
+/// wherever x is off disk 2's axis.
 PointToDisk2 evaluateToRim2(const PairInFrame1& pair, const Vec2& s) {
   const Vec3 x(s.x(), s.y(), 0.0);
   const Vec3 from_c2 = x - pair.c;
@@ -829,6 +829,7 @@ Solution solveInFrame1(const PairInFrame1& pair) {
       return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
     }
   }
+  // The lens corners when the rims cross in projection (returned if proven).
   // Newton, then while the certified gap is open: the local minimum along rim 1
   // next to Newton's answer, the same two steps on rim 2 (both points of a
   // rim-rim optimum are on a rim, and where one side crawls the other may not),
