@@ -220,55 +220,40 @@ struct PointToDisk2 {
   }
 };
 
-/// The nearest point of disk 2's rim circle to a point whose disk-2-plane
-/// coordinates are y (rho^2 = |y|^2 > 0), and the Hessian of half the squared
-/// distance to the circle: I - (r2/rho) t t^T with t = n2 x e, e = y / rho
-/// (frame 1). Fills q and the Hessian of `out`. Always inlined: it is on the
-/// rim iteration's critical path, in evaluate (GCC did not inline it there
-/// once it had a second caller: +5 ns per random pair).
-[[gnu::always_inline]] inline void towardsRim2(const PairInFrame1& pair, const Vec2& y, double rho_squared, PointToDisk2* out) {
-  // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division run
-  // side by side instead of one after the other (this is on the rim
-  // iteration's critical path).
-  const double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
-  const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
-  out->q = pair.c + pair.r2 * e;
-  const Vec3 t = pair.R.col(2).cross(e);
-  out->hessian_identity = 1.0;
-  out->hessian_rank_one = -pair.r2 * inverse_rho;
-  out->hessian_direction = Vec2(t.x(), t.y());
-}
+/// What evaluate measures x's distance to: disk 2 (psi), or disk 2's rim
+/// circle (phi: psi's rim branch continued over disk 2's face, where it
+/// exceeds psi; smooth wherever x is off disk 2's axis, so the lens-corner
+/// candidates iterate on it).
+enum class DistanceTo { disk2, rim2 };
 
+template <DistanceTo kTarget = DistanceTo::disk2>
 PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   const Vec3 x(s.x(), s.y(), 0.0);
   const Vec3 from_c2 = x - pair.c;
   const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));  // x in disk 2's plane
   const double rho_squared = y.squaredNorm();
   PointToDisk2 out;
-  if (rho_squared <= pair.r2 * pair.r2) {  // x projects into disk 2's face
+  if (kTarget == DistanceTo::disk2 && rho_squared <= pair.r2 * pair.r2) {
+    // x projects into disk 2's face.
     out.q = pair.c + y.x() * pair.R.col(0) + y.y() * pair.R.col(1);
     // m2 = in-plane (frame 1) part of n2: the Hessian of height^2/2 over plane 2.
     out.hessian_identity = 0.0;
     out.hessian_rank_one = 1.0;
     out.hessian_direction = Vec2(pair.R(0, 2), pair.R(1, 2));
-  } else {  // nearest point on disk 2's rim
-    towardsRim2(pair, y, rho_squared, &out);
+  } else {  // nearest point on disk 2's rim, radial direction e
+    // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division
+    // run side by side instead of one after the other (this is on the rim
+    // iteration's critical path).
+    const double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
+    const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
+    out.q = pair.c + pair.r2 * e;
+    // Hessian of dist^2/2 to a circle (to a circle's disk outside it):
+    // I - (r2/rho) t t^T, t = n2 x e.
+    const Vec3 t = pair.R.col(2).cross(e);
+    out.hessian_identity = 1.0;
+    out.hessian_rank_one = -pair.r2 * inverse_rho;
+    out.hessian_direction = Vec2(t.x(), t.y());
   }
-  const Vec3 residual = x - out.q;
-  out.psi = 0.5 * residual.squaredNorm();
-  out.gradient = residual.head<2>();
-  return out;
-}
-
-/// Half the squared distance from x = (s, 0) to disk 2's rim circle: psi's
-/// rim branch, continued over disk 2's face (where it exceeds psi). Smooth
-/// wherever x is off disk 2's axis.
-PointToDisk2 evaluateToRim2(const PairInFrame1& pair, const Vec2& s) {
-  const Vec3 x(s.x(), s.y(), 0.0);
-  const Vec3 from_c2 = x - pair.c;
-  const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));
-  PointToDisk2 out;
-  towardsRim2(pair, y, y.squaredNorm(), &out);
   const Vec3 residual = x - out.q;
   out.psi = 0.5 * residual.squaredNorm();
   out.gradient = residual.head<2>();
@@ -661,7 +646,7 @@ int lensCorners(const PairInFrame1& pair, double scale, std::array<Vec2, 2>* cor
 /// it is the optimum.
 Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
                           double face_lower_bound) {
-  PointToDisk2 at = evaluateToRim2(pair, pair.r1 * radial);
+  PointToDisk2 at = evaluate<DistanceTo::rim2>(pair, pair.r1 * radial);
   for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
     const Vec2 tangent(-radial.y(), radial.x());
     // As in rimRim: phi' = r1 sigma, phi'' = r1 kappa, here with the rim's
@@ -672,7 +657,7 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
     const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
     const Vec2 rotation = cayleyRotation(dtheta);
     const Vec2 radial_next = rotation.x() * radial + rotation.y() * tangent;
-    const PointToDisk2 next = evaluateToRim2(pair, pair.r1 * radial_next);
+    const PointToDisk2 next = evaluate<DistanceTo::rim2>(pair, pair.r1 * radial_next);
     if (!(next.psi < at.psi)) break;  // converged to rounding
     radial = radial_next, at = next;
     if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
@@ -849,10 +834,10 @@ Solution solveInFrame1(const PairInFrame1& pair) {
   // test of faceOfDisk1 seen from disk 2), checked before building that view.
   if (pair.disk1ClearanceOfPlane2() > 0.0) {
     if (auto face2 = faceOfDisk1(pair.swapped(), scale)) {
-      // Map back from disk 2's frame: x_1 = c + R x_2.
-      const Vec3 p = pair.c + pair.R * face2->q;
-      const Vec3 q = pair.c + pair.R * face2->p;
-      return {p, q, face2->distance, DiskPairFeature::rim1_face2, 0, face_lower_bound};
+      Solution answer = fromDisk2(pair, *face2);
+      answer.feature = DiskPairFeature::rim1_face2;
+      answer.lower_bound = face_lower_bound;
+      return answer;
     }
   }
   // The lens corners, for nearly parallel planes whose rims cross in projection.
