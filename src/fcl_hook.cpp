@@ -4,7 +4,8 @@
 //      forward every pair that is not two Disks to FCL's original function;
 //   3. installing them into the tables user code sees, and into the private
 //      copies inside libfcl.so (docs/fcl_hook.md explains why both);
-//   4. a probe that proves the hook answers plain fcl::distance / fcl::collide.
+//   4. a probe that proves the hook answers plain fcl::distance / fcl::collide;
+//   5. FCL's object-level entry points, with a shortcut for pairs of Disks.
 #include "fcl_disk/registration.h"
 
 #include <dlfcn.h>
@@ -58,6 +59,19 @@ template <typename S>
 const Disk<S>* asDisk(const CollisionGeometry<S>* geometry) {
   if (static_cast<const fcl::Cylinder<S>*>(geometry)->lz != S(0)) return nullptr;
   if (typeid(*geometry) != typeid(Disk<S>)) return nullptr;
+  return static_cast<const Disk<S>*>(geometry);
+}
+
+/// The Disk behind any geometry when its type_info is the one libfcl_disk sees,
+/// else nullptr. Cheaper than asDisk on the geometries that are not Disks, which
+/// is what every other pair pays for the shortcut: one load more than the type
+/// query FCL makes anyway, where type_info::operator== would call strcmp on the
+/// type names (a template's type_info may have copies). A Disk whose type_info is
+/// another copy (code in a dlopen()ed plugin that links libfcl_disk privately)
+/// is missed here and found by asDisk in FCL's tables.
+template <typename S>
+const Disk<S>* asDiskOfThisLibrary(const CollisionGeometry<S>* geometry) {
+  if (&typeid(*geometry) != &typeid(Disk<S>)) return nullptr;
   return static_cast<const Disk<S>*>(geometry);
 }
 
@@ -256,6 +270,62 @@ struct TableWrappers {
 };
 
 // ---------------------------------------------------------------------------
+// 2b. The shortcut for FCL's object-level entry points (defined in section 5):
+//     a pair of Disks is answered at once, every other pair goes to FCL's
+//     geometry-level entry, which is all FCL's object-level entry does with it.
+//     The shortcut is taken only where FCL's entry would do nothing but build
+//     a GJK solver object, look up the table and call the slot above, so the
+//     answers are those of the tables, bit for bit.
+
+/// Whether FCL's distance entry, for a pair of Disks, only calls the slot. It
+/// does more for the indep solver on a signed request whose result is already
+/// negative (it recomputes a penetration depth with collide()), and for a
+/// solver type it does not know (it returns -1).
+template <typename S>
+bool distanceEntryOnlyCallsSlot(const fcl::DistanceRequest<S>& request,
+                                const fcl::DistanceResult<S>& result) {
+  if (request.gjk_solver_type == fcl::GST_LIBCCD) return true;
+  return request.gjk_solver_type == fcl::GST_INDEP &&
+         !(request.enable_signed_distance && result.min_distance < 0);
+}
+
+/// Whether FCL's collision entry, for a pair of Disks, only calls the slot. It
+/// does not for num_max_contacts == 0 (a warning and 0) or an unknown solver.
+template <typename S>
+bool collisionEntryOnlyCallsSlot(const fcl::CollisionRequest<S>& request) {
+  return request.num_max_contacts != 0 && (request.gjk_solver_type == fcl::GST_LIBCCD ||
+                                           request.gjk_solver_type == fcl::GST_INDEP);
+}
+
+template <typename S>
+S distanceOfObjects(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
+                    const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+  const CollisionGeometry<S>* g1 = o1->collisionGeometry().get();
+  const CollisionGeometry<S>* g2 = o2->collisionGeometry().get();
+  const Disk<S>* disk1 = asDiskOfThisLibrary(g1);
+  const Disk<S>* disk2 = disk1 ? asDiskOfThisLibrary(g2) : nullptr;
+  if (disk2 && distanceEntryOnlyCallsSlot(request, result)) {
+    return answerDiskDistance(*disk1, o1->getTransform(), *disk2, o2->getTransform(), result);
+  }
+  return fcl::distance(g1, o1->getTransform(), g2, o2->getTransform(), request, result);
+}
+
+template <typename S>
+std::size_t collideObjects(const fcl::CollisionObject<S>* o1, const fcl::CollisionObject<S>* o2,
+                           const fcl::CollisionRequest<S>& request,
+                           fcl::CollisionResult<S>& result) {
+  const CollisionGeometry<S>* g1 = o1->collisionGeometry().get();
+  const CollisionGeometry<S>* g2 = o2->collisionGeometry().get();
+  const Disk<S>* disk1 = asDiskOfThisLibrary(g1);
+  const Disk<S>* disk2 = disk1 ? asDiskOfThisLibrary(g2) : nullptr;
+  if (disk2 && collisionEntryOnlyCallsSlot(request)) {
+    return answerDiskCollision(*disk1, o1->getTransform(), *disk2, o2->getTransform(), request,
+                               result);
+  }
+  return fcl::collide(g1, o1->getTransform(), g2, o2->getTransform(), request, result);
+}
+
+// ---------------------------------------------------------------------------
 // 3a. The tables that code compiled against FCL's headers uses: float paths and
 // the overloads taking a solver pointer. Their static objects are unique in the
 // process (vague linkage), so writing ours writes theirs.
@@ -434,19 +504,35 @@ void probeScalar(const char* scalar_name) {
   for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
     const std::string name = std::string(scalar_name) +
                              (solver == fcl::GST_LIBCCD ? ", libccd" : ", indep");
-    std::uint64_t before = t_disk_answers;
     fcl::DistanceRequest<S> distance_request;
     distance_request.gjk_solver_type = solver;
-    fcl::DistanceResult<S> distance_result;
-    fcl::distance(&a, &b, distance_request, distance_result);
-    probeOnePath(("fcl::distance (" + name + ")").c_str(), t_disk_answers == before + 1);
-
-    before = t_disk_answers;
     fcl::CollisionRequest<S> collision_request;
     collision_request.gjk_solver_type = solver;
+    // On objects (section 5, or FCL's own entry where libfcl comes first), and
+    // on geometries, which always goes through FCL's tables.
+    std::uint64_t before = t_disk_answers;
+    fcl::DistanceResult<S> distance_result;
+    fcl::distance(&a, &b, distance_request, distance_result);
+    probeOnePath(("fcl::distance on objects (" + name + ")").c_str(),
+                 t_disk_answers == before + 1);
+    before = t_disk_answers;
+    distance_result.clear();
+    fcl::distance(a.collisionGeometry().get(), a.getTransform(), b.collisionGeometry().get(),
+                  b.getTransform(), distance_request, distance_result);
+    probeOnePath(("fcl::distance on geometries (" + name + ")").c_str(),
+                 t_disk_answers == before + 1);
+
+    before = t_disk_answers;
     fcl::CollisionResult<S> collision_result;
     fcl::collide(&a, &b, collision_request, collision_result);
-    probeOnePath(("fcl::collide (" + name + ")").c_str(), t_disk_answers == before + 1);
+    probeOnePath(("fcl::collide on objects (" + name + ")").c_str(),
+                 t_disk_answers == before + 1);
+    before = t_disk_answers;
+    collision_result.clear();
+    fcl::collide(a.collisionGeometry().get(), a.getTransform(), b.collisionGeometry().get(),
+                 b.getTransform(), collision_request, collision_result);
+    probeOnePath(("fcl::collide on geometries (" + name + ")").c_str(),
+                 t_disk_answers == before + 1);
   }
 }
 
@@ -504,3 +590,73 @@ DiskDistanceMethod registeredDiskDistanceMethod() {
 }
 
 }  // namespace fcl_disk
+
+// ---------------------------------------------------------------------------
+// 5. FCL's object-level entry points, fcl::distance(o1, o2, request, result) and
+// fcl::collide(o1, o2, request, result), the ones planners and FCL's broadphase
+// callbacks call, defined here with the shortcut of section 2b.
+//
+// Why: before FCL's entry reaches a slot it builds a GJK solver object, makes
+// four virtual type queries, looks up the table and, in double, calls into
+// libfcl through the PLT several times: 20 ns per query, more than 10% of a
+// disk query (docs/performance.md, docs/fcl_hook.md "The object-level entry").
+//
+// How: the functions below carry the symbols of FCL's template instantiations
+// (Itanium mangling of fcl::distance<S> / fcl::collide<S> on CollisionObjects).
+// Float: fcl_templates.h declares them `extern template`, so every caller
+// links to these; libfcl has no float code. Double: libfcl exports the same
+// symbols, and the dynamic linker binds each call to the first definition in
+// load order, libfcl_disk's in every program that links fcl_disk::fcl_disk
+// (libfcl comes after it, as its dependency). Where libfcl comes first (linked
+// before fcl_disk, or libfcl_disk dlopen()ed) FCL's own entry runs and reaches
+// the same answers through the patched tables, without the shortcut.
+// test_hook's ObjectEntryPointsAreFcl_disks checks which definition runs.
+namespace fcl_disk::detail {
+
+double distanceOfObjectsDouble(const fcl::CollisionObject<double>* o1,
+                               const fcl::CollisionObject<double>* o2,
+                               const fcl::DistanceRequest<double>& request,
+                               fcl::DistanceResult<double>& result)
+    __asm__("_ZN3fcl8distanceIdEET_PKNS_15CollisionObjectIS1_EES5_RKNS_15DistanceRequestIS1_EERNS_14DistanceResultIS1_EE");
+float distanceOfObjectsFloat(const fcl::CollisionObject<float>* o1,
+                             const fcl::CollisionObject<float>* o2,
+                             const fcl::DistanceRequest<float>& request,
+                             fcl::DistanceResult<float>& result)
+    __asm__("_ZN3fcl8distanceIfEET_PKNS_15CollisionObjectIS1_EES5_RKNS_15DistanceRequestIS1_EERNS_14DistanceResultIS1_EE");
+std::size_t collideObjectsDouble(const fcl::CollisionObject<double>* o1,
+                                 const fcl::CollisionObject<double>* o2,
+                                 const fcl::CollisionRequest<double>& request,
+                                 fcl::CollisionResult<double>& result)
+    __asm__("_ZN3fcl7collideIdEEmPKNS_15CollisionObjectIT_EES5_RKNS_16CollisionRequestIS2_EERNS_15CollisionResultIS2_EE");
+std::size_t collideObjectsFloat(const fcl::CollisionObject<float>* o1,
+                                const fcl::CollisionObject<float>* o2,
+                                const fcl::CollisionRequest<float>& request,
+                                fcl::CollisionResult<float>& result)
+    __asm__("_ZN3fcl7collideIfEEmPKNS_15CollisionObjectIT_EES5_RKNS_16CollisionRequestIS2_EERNS_15CollisionResultIS2_EE");
+
+double distanceOfObjectsDouble(const fcl::CollisionObject<double>* o1,
+                               const fcl::CollisionObject<double>* o2,
+                               const fcl::DistanceRequest<double>& request,
+                               fcl::DistanceResult<double>& result) {
+  return distanceOfObjects(o1, o2, request, result);
+}
+float distanceOfObjectsFloat(const fcl::CollisionObject<float>* o1,
+                             const fcl::CollisionObject<float>* o2,
+                             const fcl::DistanceRequest<float>& request,
+                             fcl::DistanceResult<float>& result) {
+  return distanceOfObjects(o1, o2, request, result);
+}
+std::size_t collideObjectsDouble(const fcl::CollisionObject<double>* o1,
+                                 const fcl::CollisionObject<double>* o2,
+                                 const fcl::CollisionRequest<double>& request,
+                                 fcl::CollisionResult<double>& result) {
+  return collideObjects(o1, o2, request, result);
+}
+std::size_t collideObjectsFloat(const fcl::CollisionObject<float>* o1,
+                                const fcl::CollisionObject<float>* o2,
+                                const fcl::CollisionRequest<float>& request,
+                                fcl::CollisionResult<float>& result) {
+  return collideObjects(o1, o2, request, result);
+}
+
+}  // namespace fcl_disk::detail

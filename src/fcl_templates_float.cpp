@@ -7,16 +7,9 @@
 
 namespace fcl {
 
-template float distance(const CollisionObject<float>* o1, const CollisionObject<float>* o2,
-                        const DistanceRequest<float>& request, DistanceResult<float>& result);
-
 template float distance(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
                         const CollisionGeometry<float>* o2, const Transform3<float>& tf2,
                         const DistanceRequest<float>& request, DistanceResult<float>& result);
-
-template std::size_t collide(const CollisionObject<float>* o1, const CollisionObject<float>* o2,
-                             const CollisionRequest<float>& request,
-                             CollisionResult<float>& result);
 
 template std::size_t collide(const CollisionGeometry<float>* o1, const Transform3<float>& tf1,
                              const CollisionGeometry<float>* o2, const Transform3<float>& tf2,

@@ -9,11 +9,16 @@
 #include <fcl_disk/fcl_disk.h>
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <atomic>
+#include <cstring>
 #include <random>
 #include <set>
 #include <thread>
 #include <vector>
+
+#include "test_random.h"
 
 namespace {
 
@@ -306,6 +311,197 @@ TEST(Hook, ConcurrentQueriesMatchSerialAnswers) {
   registrar.join();
   EXPECT_EQ(mismatches.load(), 0);
 }
+
+// ---------------------------------------------------------------------------
+// FCL's object-level entry points, fcl::distance / fcl::collide on two
+// CollisionObjects: libfcl_disk defines them (src/fcl_hook.cpp, section 5) with
+// a shortcut for pairs of Disks. This program links fcl_disk::fcl_disk, so its
+// calls must reach those definitions, in double too, where libfcl exports the
+// same symbols.
+
+/// The file of the shared object that defines the code at `function`.
+template <typename Function>
+std::string definingObject(Function* function) {
+  Dl_info info{};
+  if (dladdr(reinterpret_cast<void*>(function), &info) == 0 || !info.dli_fname) return "?";
+  return info.dli_fname;
+}
+
+TEST(Hook, ObjectEntryPointsAreFcl_disks) {
+  const std::string files[] = {
+      definingObject<double(const fcl::CollisionObjectd*, const fcl::CollisionObjectd*,
+                            const fcl::DistanceRequestd&, fcl::DistanceResultd&)>(
+          &fcl::distance<double>),
+      definingObject<float(const fcl::CollisionObjectf*, const fcl::CollisionObjectf*,
+                           const fcl::DistanceRequestf&, fcl::DistanceResultf&)>(
+          &fcl::distance<float>),
+      definingObject<std::size_t(const fcl::CollisionObjectd*, const fcl::CollisionObjectd*,
+                                 const fcl::CollisionRequestd&, fcl::CollisionResultd&)>(
+          &fcl::collide<double>),
+      definingObject<std::size_t(const fcl::CollisionObjectf*, const fcl::CollisionObjectf*,
+                                 const fcl::CollisionRequestf&, fcl::CollisionResultf&)>(
+          &fcl::collide<float>)};
+  for (const std::string& file : files) EXPECT_NE(file.find("libfcl_disk"), std::string::npos) << file;
+}
+
+/// Bitwise equality, NaN equal to NaN (both paths write the same quiet NaN, but
+/// compare them as values of the kind, not as bits).
+template <typename S>
+bool same(S a, S b) {
+  return (std::isnan(a) && std::isnan(b)) || std::memcmp(&a, &b, sizeof(S)) == 0;
+}
+
+template <typename S>
+bool sameVector(const fcl::Vector3<S>& a, const fcl::Vector3<S>& b) {
+  return same(a.x(), b.x()) && same(a.y(), b.y()) && same(a.z(), b.z());
+}
+
+template <typename S>
+struct EntryPair {
+  std::shared_ptr<fcl_disk::Disk<S>> disk1, disk2;
+  fcl::Transform3<S> X1, X2;
+  bool overlapping;
+};
+
+/// Disk pairs of every kind the shortcut can see: apart, overlapping (every
+/// fourth pair is made coplanar and overlapping), and a few with a NaN pose.
+template <typename S>
+std::vector<EntryPair<S>> entryPairs() {
+  fcl_disk_test::Random random(4242);
+  std::vector<EntryPair<S>> pairs;
+  for (int i = 0; i < 240; ++i) {
+    fcl::Transform3<double> X1 = fcl::Transform3<double>::Identity(), X2 = X1;
+    X1.linear() = random.rotation();
+    X1.translation() = random.inBall(2.0);
+    X2.linear() = i % 4 == 0 ? X1.linear() : random.rotation();
+    X2.translation() = i % 4 == 0 ? X1 * Vec3(0.3, 0.2, 0.0) : X1.translation() + random.inBall(2.5);
+    if (i % 60 == 59) X2.translation().x() = std::numeric_limits<double>::quiet_NaN();
+    const double r1 = random.uniform(0.3, 1.5), r2 = random.uniform(0.3, 1.5);
+    EntryPair<S> pair{std::make_shared<fcl_disk::Disk<S>>(S(r1)),
+                      std::make_shared<fcl_disk::Disk<S>>(S(r2)), X1.cast<S>(), X2.cast<S>(),
+                      false};
+    pair.overlapping = fcl_disk::intersectDisks(S(r1), pair.X1, S(r2), pair.X2);
+    pairs.push_back(pair);
+  }
+  return pairs;
+}
+
+// The shortcut answers exactly as FCL's own entry does through the tables
+// (fcl::distance on geometries and poses, which no definition here replaces):
+// every request flag and solver, fresh and carried-over results, including
+// those FCL's entry treats specially (indep, signed, result already negative).
+template <typename S>
+void expectObjectDistanceAsTables() {
+  int overlapping = 0;
+  for (const EntryPair<S>& pair : entryPairs<S>()) {
+    overlapping += pair.overlapping;
+    const fcl::CollisionObject<S> a(pair.disk1, pair.X1), b(pair.disk2, pair.X2);
+    for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+      for (int flags = 0; flags < 4; ++flags) {
+        fcl::DistanceRequest<S> request(flags & 1);
+        request.enable_signed_distance = flags & 2;
+        request.gjk_solver_type = solver;
+        // Fresh; carried over from a farther and a nearer pair; already negative.
+        // Not the last with indep and signed: there FCL's entry recomputes a
+        // penetration depth with collide() and asserts that it found one above
+        // the smallest positive number, which two zero-thickness disks never have
+        // (the shortcut leaves that case to FCL's entry; docs/fcl_hook.md).
+        for (S initial : {std::numeric_limits<S>::max(), S(5), S(0.05), S(-0.5)}) {
+          if (initial < 0 && solver == fcl::GST_INDEP && request.enable_signed_distance) continue;
+          fcl::DistanceResult<S> through_objects, through_tables;
+          through_objects.min_distance = through_tables.min_distance = initial;
+          const S d_objects = fcl::distance(&a, &b, request, through_objects);
+          const S d_tables =
+              fcl::distance(pair.disk1.get(), pair.X1, pair.disk2.get(), pair.X2, request,
+                            through_tables);
+          SCOPED_TRACE(::testing::Message() << "solver " << solver << " flags " << flags
+                                            << " initial " << initial);
+          EXPECT_TRUE(same(d_objects, d_tables)) << d_objects << " vs " << d_tables;
+          EXPECT_TRUE(same(through_objects.min_distance, through_tables.min_distance));
+          EXPECT_EQ(through_objects.o1, through_tables.o1);
+          EXPECT_EQ(through_objects.o2, through_tables.o2);
+          EXPECT_EQ(through_objects.b1, through_tables.b1);
+          EXPECT_EQ(through_objects.b2, through_tables.b2);
+          for (int k : {0, 1}) {
+            EXPECT_TRUE(sameVector<S>(through_objects.nearest_points[k],
+                                      through_tables.nearest_points[k]));
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(overlapping, 30);  // overlapping pairs are answered by their common point
+}
+
+template <typename S>
+void expectObjectCollideAsTables() {
+  struct Flags {
+    std::size_t max_contacts;
+    bool contact, cost;
+  };
+  int colliding = 0;
+  const std::vector<EntryPair<S>> pairs = entryPairs<S>();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const EntryPair<S>& pair = pairs[i];
+    const fcl::CollisionObject<S> a(pair.disk1, pair.X1), b(pair.disk2, pair.X2);
+    for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+      // num_max_contacts = 0 makes FCL's entry print a warning: one pair does.
+      for (Flags flags : {Flags{1, false, false}, Flags{1, true, false}, Flags{4, true, true},
+                          Flags{0, false, false}}) {
+        if (flags.max_contacts == 0 && i != 0) continue;
+        fcl::CollisionRequest<S> request(flags.max_contacts, flags.contact,
+                                         flags.cost ? 4 : 1, flags.cost);
+        request.gjk_solver_type = solver;
+        // Fresh, and carrying one contact over from an earlier pair.
+        for (bool carried : {false, true}) {
+          fcl::CollisionResult<S> through_objects, through_tables;
+          if (carried) {
+            const fcl::Contact<S> earlier(pair.disk2.get(), pair.disk1.get(), 7, 8,
+                                          fcl::Vector3<S>::Zero(), fcl::Vector3<S>::UnitZ(),
+                                          S(0));
+            through_objects.addContact(earlier);
+            through_tables.addContact(earlier);
+          }
+          const std::size_t n_objects = fcl::collide(&a, &b, request, through_objects);
+          const std::size_t n_tables = fcl::collide(pair.disk1.get(), pair.X1, pair.disk2.get(),
+                                                    pair.X2, request, through_tables);
+          SCOPED_TRACE(::testing::Message() << "solver " << solver << " max_contacts "
+                                            << flags.max_contacts << " carried " << carried);
+          EXPECT_EQ(n_objects, n_tables);
+          ASSERT_EQ(through_objects.numContacts(), through_tables.numContacts());
+          colliding += !carried && n_objects > 0;
+          for (std::size_t k = 0; k < through_objects.numContacts(); ++k) {
+            const auto& c1 = through_objects.getContact(k);
+            const auto& c2 = through_tables.getContact(k);
+            EXPECT_EQ(c1.o1, c2.o1);
+            EXPECT_EQ(c1.o2, c2.o2);
+            EXPECT_EQ(c1.b1, c2.b1);
+            EXPECT_EQ(c1.b2, c2.b2);
+            if (!request.enable_contact) continue;  // FCL leaves the geometry unset
+            EXPECT_TRUE(sameVector<S>(c1.pos, c2.pos));
+            EXPECT_TRUE(sameVector<S>(c1.normal, c2.normal));
+            EXPECT_TRUE(same(c1.penetration_depth, c2.penetration_depth));
+          }
+          std::vector<fcl::CostSource<S>> costs1, costs2;
+          through_objects.getCostSources(costs1);
+          through_tables.getCostSources(costs2);
+          ASSERT_EQ(costs1.size(), costs2.size());
+          for (std::size_t k = 0; k < costs1.size(); ++k) {
+            EXPECT_TRUE(sameVector<S>(costs1[k].aabb_min, costs2[k].aabb_min));
+            EXPECT_TRUE(sameVector<S>(costs1[k].aabb_max, costs2[k].aabb_max));
+            EXPECT_TRUE(same(costs1[k].total_cost, costs2[k].total_cost));
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(colliding, 30);
+}
+
+TEST(Hook, ObjectDistanceAnswersAsTheTablesDouble) { expectObjectDistanceAsTables<double>(); }
+TEST(Hook, ObjectDistanceAnswersAsTheTablesFloat) { expectObjectDistanceAsTables<float>(); }
+TEST(Hook, ObjectCollideAnswersAsTheTablesDouble) { expectObjectCollideAsTables<double>(); }
+TEST(Hook, ObjectCollideAnswersAsTheTablesFloat) { expectObjectCollideAsTables<float>(); }
 
 TEST(Disk, RejectsBadRadiusWithTheValue) {
   for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(),
