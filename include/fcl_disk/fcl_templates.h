@@ -14,7 +14,9 @@
 // Include it before a translation unit's first use of these templates (C++
 // requires the declaration to precede the implicit instantiation); including
 // fcl_disk's headers first does that. Behaviour is unchanged: the same code,
-// compiled once.
+// compiled once; the object-level fcl::distance / fcl::collide are the hook's
+// own, FCL's entry with a shortcut for pairs of Disks that gives the same
+// answers (docs/fcl_hook.md, "The object-level entry points").
 #pragma once
 
 #include <fcl/narrowphase/collision.h>
