@@ -11,17 +11,19 @@
 //                                         the hook's dispatch overhead;
 //   fcl_distance/dispatch_only/<float|double>
 //                                         the same pairs with a result already at
-//                                         distance 0: FCL's entry path and the
-//                                         hook's Disk test, no solver (the floor
-//                                         of the overhead);
+//                                         distance 0: the entry path and its Disk
+//                                         test, no solver (the floor of the
+//                                         overhead; fcl_disk's object-level
+//                                         entry, docs/fcl_hook.md);
 //   fcl_collide/disk/<float|double>       intersectDisks through fcl::collide;
 //   fcl_distance/gjk_<libccd|indep>_cylinder_h<h>/double
 //                                         FCL's GJK on Cylinder(r, h), default
 //                                         request (distance_tolerance 1e-6);
 //   fcl_distance/sphere_sphere/double     FCL's own closed-form sphere-sphere
 //                                         entry: about what FCL's dispatch costs;
-//   overhead/typeid_x2                    the hook's "is it a Disk?" test on both
-//                                         geometries (lz == 0, then typeid).
+//   overhead/typeid_x2                    the tables' "is it a Disk?" test on both
+//                                         geometries (typeid; the object-level
+//                                         entry compares type_info addresses).
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_distance --benchmark_repetitions=10
 //     --benchmark_display_aggregates_only=true
@@ -160,9 +162,11 @@ void fclDistanceDisk(benchmark::State& state, fcl_disk::DiskDistanceMethod metho
 
 // The dispatch alone: the same disk pairs through fcl::distance with a result
 // already at distance 0, which FCL's shape-pair entries (and fcl_disk's) leave
-// alone without computing anything. What remains is FCL's entry path (the
-// solver object, the table lookup, the virtual type queries) plus the hook's
-// Disk test: the floor under any disk query through fcl::distance.
+// alone without computing anything. What remains is the entry path and its
+// Disk test: the floor under any disk query through fcl::distance. This program
+// links fcl_disk first, so that is fcl_disk's object-level entry with its
+// shortcut (docs/fcl_hook.md); FCL's own entry (solver object, table lookup,
+// virtual type queries, the slot's Disk test) runs where libfcl is linked first.
 template <typename S>
 void fclDistanceDispatchOnly(benchmark::State& state) {
   const auto& p = pool<S>();
@@ -200,7 +204,7 @@ void fclCollideDisk(benchmark::State& state) {
 }
 
 // ---- pieces of the hook's overhead ------------------------------------------
-// The hook's wrapper tells a Disk from a real Cylinder by lz == 0 and then an
+// The tables' wrapper tells a Disk from a real Cylinder by lz == 0 and then an
 // exact typeid comparison on both geometries (Disk is final); this times that
 // test alone.
 

@@ -12,8 +12,9 @@
 // directly (exact_direct, almohamad_selim_direct; path "direct"), and
 // fcl_entry_only: the disk pair through fcl::distance with a result already at
 // distance 0, which FCL's shape-pair entries (and fcl_disk's) leave alone, so
-// FCL's entry path and the hook's Disk test without a solver: the floor under
-// any disk query through fcl::distance (timed only; no error, not in the CSV).
+// the entry path and its Disk test without a solver (fcl_disk's object-level
+// entry, docs/fcl_hook.md): the floor under any disk query through
+// fcl::distance (timed only; no error, not in the CSV).
 //
 // Pairs: every family of test/disk_families.h (double), fixed seed. Error:
 // |d - d_ref| / (r1 + r2 + |c1 - c2|), d_ref from the independent
@@ -614,8 +615,8 @@ int main(int argc, char** argv) {
               100 * (as.median_ns - as_direct.median_ns) / as.median_ns,
               formatNs(as.median_ns).c_str(), formatNs(as_direct.median_ns).c_str());
   const Summary& entry = find("fcl_entry_only", "all");
-  std::printf("- FCL's entry path alone (fcl_entry_only: fcl::distance on the disk pair with a "
-              "result already at 0, the hook's Disk test included, no solver): %s ns, %.1f%% of "
+  std::printf("- the entry path alone (fcl_entry_only: fcl::distance on the disk pair with a "
+              "result already at 0, the Disk test included, no solver): %s ns, %.1f%% of "
               "the exact query; the overhead above is %s ns\n",
               formatNs(entry.median_ns).c_str(), 100 * entry.median_ns / exact.median_ns,
               formatNs(exact.median_ns - exact_direct.median_ns).c_str());
