@@ -488,9 +488,13 @@ void installIntoLibfclPrivateTables() {
 // registration.
 thread_local bool t_installing = false;
 
-void probeOnePath(const char* path, bool reached) {
-  if (!reached) {
-    throw std::runtime_error(hookFailureAdvice(std::string("the probe query through ") + path +
+/// Runs `query` and throws unless it reached fcl_disk exactly once.
+template <typename Query>
+void probeOnePath(const std::string& path, Query query) {
+  const std::uint64_t before = t_disk_answers;
+  query();
+  if (t_disk_answers != before + 1) {
+    throw std::runtime_error(hookFailureAdvice("the probe query through " + path +
                                                " did not reach fcl_disk"));
   }
 }
@@ -500,7 +504,7 @@ void probeScalar(const char* scalar_name) {
   auto disk = std::make_shared<Disk<S>>(S(1));
   fcl::Transform3<S> lifted = fcl::Transform3<S>::Identity();
   lifted.translation() << S(0.25), S(0), S(0.5);
-  fcl::CollisionObject<S> a(disk), b(disk, lifted);
+  const fcl::CollisionObject<S> a(disk), b(disk, lifted);
   for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
     const std::string name = std::string(scalar_name) +
                              (solver == fcl::GST_LIBCCD ? ", libccd" : ", indep");
@@ -510,29 +514,24 @@ void probeScalar(const char* scalar_name) {
     collision_request.gjk_solver_type = solver;
     // On objects (section 5, or FCL's own entry where libfcl comes first), and
     // on geometries, which always goes through FCL's tables.
-    std::uint64_t before = t_disk_answers;
-    fcl::DistanceResult<S> distance_result;
-    fcl::distance(&a, &b, distance_request, distance_result);
-    probeOnePath(("fcl::distance on objects (" + name + ")").c_str(),
-                 t_disk_answers == before + 1);
-    before = t_disk_answers;
-    distance_result.clear();
-    fcl::distance(a.collisionGeometry().get(), a.getTransform(), b.collisionGeometry().get(),
-                  b.getTransform(), distance_request, distance_result);
-    probeOnePath(("fcl::distance on geometries (" + name + ")").c_str(),
-                 t_disk_answers == before + 1);
-
-    before = t_disk_answers;
-    fcl::CollisionResult<S> collision_result;
-    fcl::collide(&a, &b, collision_request, collision_result);
-    probeOnePath(("fcl::collide on objects (" + name + ")").c_str(),
-                 t_disk_answers == before + 1);
-    before = t_disk_answers;
-    collision_result.clear();
-    fcl::collide(a.collisionGeometry().get(), a.getTransform(), b.collisionGeometry().get(),
-                 b.getTransform(), collision_request, collision_result);
-    probeOnePath(("fcl::collide on geometries (" + name + ")").c_str(),
-                 t_disk_answers == before + 1);
+    probeOnePath("fcl::distance on objects (" + name + ")", [&] {
+      fcl::DistanceResult<S> result;
+      fcl::distance(&a, &b, distance_request, result);
+    });
+    probeOnePath("fcl::distance on geometries (" + name + ")", [&] {
+      fcl::DistanceResult<S> result;
+      fcl::distance(disk.get(), a.getTransform(), disk.get(), b.getTransform(), distance_request,
+                    result);
+    });
+    probeOnePath("fcl::collide on objects (" + name + ")", [&] {
+      fcl::CollisionResult<S> result;
+      fcl::collide(&a, &b, collision_request, result);
+    });
+    probeOnePath("fcl::collide on geometries (" + name + ")", [&] {
+      fcl::CollisionResult<S> result;
+      fcl::collide(disk.get(), a.getTransform(), disk.get(), b.getTransform(), collision_request,
+                   result);
+    });
   }
 }
 
