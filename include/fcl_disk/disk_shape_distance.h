@@ -1,0 +1,91 @@
+// Exact distance and intersection between a disk and an FCL primitive, certified by
+// convex duality. Derivation and notation: docs/disk_shape_distance.md.
+#pragma once
+
+#include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
+#include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
+
+#include <fcl_disk/disk_intersection.h>
+#include <fcl_disk/disk_pair.h>
+
+namespace fcl_disk {
+
+/// Distance between a disk and another shape, and a pair of nearest points.
+template <typename S>
+struct DiskShapeDistanceResult {
+  S distance{0};  ///< |p_W_shape - p_W_disk| >= 0; 0 when they intersect.
+  fcl::Vector3<S> p_W_disk{fcl::Vector3<S>::Zero()};   ///< point of the disk, world frame.
+  fcl::Vector3<S> p_W_shape{fcl::Vector3<S>::Zero()};  ///< point of the shape, world frame.
+  /// A certified lower bound on the true distance (the duality certificate,
+  /// docs/disk_shape_distance.md section 2): lower_bound <= d_true <= distance up
+  /// to rounding, so certifiedGap() is an error bar the caller can check.
+  S lower_bound{0};
+  int iterations{0};  ///< iterations of the generic solver (0 for closed forms).
+
+  S certifiedGap() const { return distance - lower_bound; }
+};
+
+/// Exact distance between the disk of radius `radius` with pose X_WD and `shape`
+/// with pose X_WS, for Shape one of fcl::Sphere, Box, Capsule, Cylinder, Cone,
+/// Ellipsoid, Convex, Halfspace, Plane, TriangleP (each pair lives in
+/// src/pairs/disk_<shape>.cpp).
+///
+/// Frames: the disk is centred at the origin of its frame D, in D's XY plane,
+/// normal +Z; the shape is FCL's, in its frame S (fcl::Cylinder, Cone, Capsule
+/// along Z, centred; a Cone's apex at +lz/2; a Halfspace is {x : n.x <= d}, a
+/// Plane {x : n.x = d}; a TriangleP is its three vertices, a flat closed
+/// triangle). Points are returned in the world frame W. Units: the caller's.
+/// All arithmetic is in double, in the disk's frame relative to its centre.
+///
+/// Scale: scale = radius + R_S + |c_D - c_S|, where R_S is the shape's bounding
+/// radius about its frame origin c_S (for Halfspace and Plane, R_S = 0 and c_S
+/// is the foot of the disk centre on the boundary plane).
+///
+/// Guarantee (double): |distance - d_true| <= 1e-12 * scale for Sphere,
+/// Halfspace, Plane (closed forms) and for Box, Capsule, Cylinder, Cone,
+/// TriangleP, Ellipsoid, Convex (the generic solver, docs section 3): both
+/// points lie on their shapes to the same bound, and
+/// |p_W_shape - p_W_disk| == distance up to rounding. lower_bound is the
+/// certificate; certifiedGap() <= 1e-12 * scale on converged answers and an
+/// honest, larger error bar where the iteration stops at its cap.
+/// Float: inputs are promoted to double and results rounded to float.
+///
+/// Overlap: distance 0, p_W_disk == p_W_shape == a point of both shapes
+/// (unsigned and signed alike; penetration depth is not computed here).
+/// Ties (parallel faces, a segment parallel to the disk): the pair the
+/// iteration reaches, deterministic for a given input.
+///
+/// Invalid input: a radius rejected by isValidDiskRadius(), a disk pose rejected
+/// by isValidDiskPose(), a shape pose with a NaN or infinite entry or a rotation
+/// further than kRotationDefectTolerance from orthonormal, or a shape with NaN,
+/// infinite or negative dimensions gives NaN distance, lower_bound and points.
+/// Degenerate but valid shapes (a zero-size box or sphere, a zero-length capsule
+/// or cylinder, a flat Convex, a zero-area triangle) are answered exactly as the
+/// point, segment or polygon they are.
+template <typename S, typename Shape>
+DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>& X_WD,
+                                             const Shape& shape, const fcl::Transform3<S>& X_WS);
+
+/// Whether the disk and `shape` share a point (closed sets: touching counts), and
+/// if so a contact. Frames, shapes and invalid input as diskShapeDistance (invalid
+/// input: false). Decision tolerance: closer than 1e-13 * scale counts as touching.
+///
+/// Contact convention (FCL's for fcl::Contact, the disk as object 1): `pos` is a
+/// point of both shapes; `normal` is a unit vector from the disk towards the
+/// shape, and translating the shape by penetration_depth * normal separates them:
+/// the smallest such translation among the disk's normal and the shape's own
+/// candidate directions (docs/disk_shape_distance.md section 5). It is an upper
+/// bound on the penetration depth, exact for Halfspace.
+template <typename S, typename Shape>
+bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
+                        const fcl::Transform3<S>& X_WS, DiskContact<S>* contact = nullptr);
+
+}  // namespace fcl_disk

@@ -1,0 +1,198 @@
+// Internal: what every disk-shape pair shares. The shape posed in the disk's
+// frame, input validation, the world-frame result, the contact, and the driver
+// that runs the generic solver (src/disk_shape_solver.h) for a pair given its
+// Target. A pair file (src/pairs/disk_<shape>.cpp) specialises DiskShapePair for
+// its shape and instantiates it with FCL_DISK_INSTANTIATE_DISK_SHAPE_PAIR.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <initializer_list>
+#include <limits>
+
+#include "disk_shape_solver.h"
+#include "fcl_disk/disk_shape_distance.h"
+
+namespace fcl_disk {
+namespace internal {
+
+/// The shape's pose X_DS in the disk's frame D (double, relative to the disk's
+/// centre, so a common translation costs only the rounding of c_S - c_D).
+struct PoseInDisk {
+  Mat3 R;  ///< rotation of the shape's frame in D.
+  Vec3 c;  ///< origin of the shape's frame in D.
+
+  template <typename S>
+  static PoseInDisk of(const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
+    const Mat3 R_WD = X_WD.linear().template cast<double>();
+    const Vec3 offset =
+        X_WS.translation().template cast<double>() - X_WD.translation().template cast<double>();
+    return PoseInDisk{R_WD.transpose() * X_WS.linear().template cast<double>(),
+                      R_WD.transpose() * offset};
+  }
+  Vec3 toShape(const Vec3& x) const { return R.transpose() * (x - c); }
+  Vec3 fromShape(const Vec3& y) const { return c + R * y; }
+  Vec3 directionToShape(const Vec3& w) const { return R.transpose() * w; }
+  Vec3 directionFromShape(const Vec3& w) const { return R * w; }
+  /// A Hessian H_S of the shape frame seen in D: R H_S R^T.
+  Mat3 hessianFromShape(const Mat3& H) const { return R * H * R.transpose(); }
+};
+
+/// Whether every length of a shape is usable: finite, >= 0, within the range of
+/// disk lengths (kMaxDiskLength: squares stay finite).
+inline bool isValidShapeLength(double length) {
+  return length >= 0.0 && length <= double(kMaxDiskLength<double>);
+}
+inline bool areValidShapeLengths(std::initializer_list<double> lengths) {
+  bool valid = true;
+  for (const double length : lengths) valid &= isValidShapeLength(length);
+  return valid;
+}
+
+template <typename S>
+DiskShapeDistanceResult<S> nanDiskShapeResult() {
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  DiskShapeDistanceResult<S> result;
+  result.distance = result.lower_bound = nan;
+  result.p_W_disk.setConstant(nan);
+  result.p_W_shape.setConstant(nan);
+  return result;
+}
+
+/// The disk's pose and radius, and the shape's pose, describe a pair (the shape's
+/// own dimensions are the pair's to check). A shape pose obeys the disk pose rule:
+/// finite, within kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance.
+template <typename S>
+bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
+                             const fcl::Transform3<S>& X_WS) {
+  return isValidDiskRadius(radius) && isValidDiskPose(X_WD) && isValidDiskPose(X_WS);
+}
+
+template <typename S>
+DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WD,
+                                   const DiskShapeSolution& solution) {
+  const Mat3 R_WD = X_WD.linear().template cast<double>();
+  const Vec3 c_D = X_WD.translation().template cast<double>();
+  DiskShapeDistanceResult<S> result;
+  result.distance = S(solution.distance);
+  result.lower_bound = S(std::min(solution.lower_bound, solution.distance));
+  result.p_W_disk = (c_D + R_WD * solution.p).template cast<S>();
+  result.p_W_shape = (c_D + R_WD * solution.q).template cast<S>();
+  result.iterations = solution.iterations;
+  return result;
+}
+
+/// The contact of an intersecting pair (frame D in, world out): pos the common
+/// point; among the unit candidate directions w (the disk's normals and the
+/// shape's own), the one whose separating translation of the shape,
+/// depth(w) = max_disk w.k - min_shape w.y, is smallest (docs section 5).
+template <typename S, typename Directions, typename DepthAlong>
+DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WD, const Vec3& common_point,
+                              const Directions& shape_directions, DepthAlong depth_along) {
+  Vec3 best_direction = Vec3::UnitZ();
+  double best_depth = std::numeric_limits<double>::infinity();
+  auto consider = [&](const Vec3& w) {
+    const double length = w.norm();
+    if (!(length > 0.0)) return;
+    const Vec3 unit = w / length;
+    const double depth = depth_along(unit);
+    if (depth < best_depth) best_depth = depth, best_direction = unit;
+  };
+  consider(Vec3::UnitZ());
+  consider(-Vec3::UnitZ());
+  for (const Vec3& w : shape_directions) {
+    consider(w);
+    consider(-w);
+  }
+  const Mat3 R_WD = X_WD.linear().template cast<double>();
+  DiskContact<S> contact;
+  contact.pos = (X_WD.translation().template cast<double>() + R_WD * common_point).template cast<S>();
+  contact.normal = (R_WD * best_direction).template cast<S>();
+  contact.penetration_depth = S(std::max(best_depth, 0.0));
+  return contact;
+}
+
+/// Each pair specialises this for its shape class (src/pairs/disk_<shape>.cpp)
+/// with static distance() and intersect() matching diskShapeDistance /
+/// diskShapeIntersect; GenericDiskShapePair implements both for pairs solved by
+/// the generic solver.
+template <typename Shape>
+struct DiskShapePair;
+
+/// distance() and intersect() from the generic solver, for a Traits class with
+///   static bool valid(const Shape&);                 // dimensions usable
+///   static double boundingRadius(const Shape&);      // about the shape's origin
+///   static double inflation(const Shape&);           // rho: X = core + B_rho
+///   static Target target(const Shape&, const PoseInDisk&);  // the core, in D
+///   static auto contactDirections(const Target&);  // a range of Vec3, frame D
+template <typename S, typename Shape, typename Traits>
+struct GenericDiskShapePair {
+  static DiskShapeDistanceResult<S> distance(S radius, const fcl::Transform3<S>& X_WD,
+                                             const Shape& shape, const fcl::Transform3<S>& X_WS) {
+    if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) {
+      return nanDiskShapeResult<S>();
+    }
+    const PoseInDisk pose = PoseInDisk::of(X_WD, X_WS);
+    const auto target = Traits::target(shape, pose);
+    const double scale = double(radius) + Traits::boundingRadius(shape) + pose.c.norm();
+    return toWorld(X_WD, solveDiskShape(target, double(radius), Traits::inflation(shape), scale,
+                                        SolverGoal::distance));
+  }
+
+  static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
+                        const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
+    if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) return false;
+    const PoseInDisk pose = PoseInDisk::of(X_WD, X_WS);
+    const auto target = Traits::target(shape, pose);
+    const double r = double(radius);
+    const double rho = Traits::inflation(shape);
+    const double scale = r + Traits::boundingRadius(shape) + pose.c.norm();
+    const DiskShapeSolution solution =
+        solveDiskShape(target, r, rho, scale, SolverGoal::intersection);
+    if (!(solution.distance <= kShapeTouchingTolerance * scale)) return false;
+    if (contact) {
+      const auto depth_along = [&](const Vec3& w) {
+        const double lowest = w.dot(target.support(-w)) - rho;
+        return r * std::sqrt(w.x() * w.x() + w.y() * w.y()) - lowest;
+      };
+      *contact = contactInWorld<S>(X_WD, solution.p, Traits::contactDirections(target),
+                                   depth_along);
+    }
+    return true;
+  }
+};
+
+}  // namespace internal
+
+// The one definition of the public entry points: each pair's DiskShapePair.
+template <typename S, typename Shape>
+DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>& X_WD,
+                                             const Shape& shape, const fcl::Transform3<S>& X_WS) {
+  return internal::DiskShapePair<Shape>::distance(radius, X_WD, shape, X_WS);
+}
+
+template <typename S, typename Shape>
+bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
+                        const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
+  return internal::DiskShapePair<Shape>::intersect(radius, X_WD, shape, X_WS, contact);
+}
+
+}  // namespace fcl_disk
+
+/// Instantiates the public entry points for fcl::ShapeTemplate<float / double>.
+#define FCL_DISK_INSTANTIATE_DISK_SHAPE_PAIR(ShapeTemplate)                                      \
+  namespace fcl_disk {                                                                         \
+  template DiskShapeDistanceResult<float> diskShapeDistance(                                   \
+      float, const fcl::Transform3<float>&, const ShapeTemplate<float>&,                        \
+      const fcl::Transform3<float>&);                                                          \
+  template DiskShapeDistanceResult<double> diskShapeDistance(                                  \
+      double, const fcl::Transform3<double>&, const ShapeTemplate<double>&,                     \
+      const fcl::Transform3<double>&);                                                         \
+  template bool diskShapeIntersect(float, const fcl::Transform3<float>&,                        \
+                                   const ShapeTemplate<float>&, const fcl::Transform3<float>&,  \
+                                   DiskContact<float>*);                                       \
+  template bool diskShapeIntersect(double, const fcl::Transform3<double>&,                      \
+                                   const ShapeTemplate<double>&, const fcl::Transform3<double>&, \
+                                   DiskContact<double>*);                                      \
+  }

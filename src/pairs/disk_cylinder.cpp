@@ -1,0 +1,73 @@
+// Disk - fcl::Cylinder (a real, solid one): the generic solver with the
+// cylinder's projection (clamp the height, clamp the radial distance) and
+// support. docs/disk_shape_distance.md, section 4.
+#include "../disk_shape_pair.h"
+
+namespace fcl_disk {
+namespace internal {
+namespace {
+
+/// The solid cylinder {x^2 + y^2 <= radius^2, |z| <= half_length}, posed in D.
+struct CylinderTarget {
+  PoseInDisk pose;
+  double radius;
+  double half_length;
+
+  Projection project(const Vec3& x) const {
+    const Vec3 y = pose.toShape(x);
+    const double z = std::clamp(y.z(), -half_length, half_length);
+    const double rho = std::sqrt(y.x() * y.x() + y.y() * y.y());
+    // psi's Hessian in the cylinder frame: 1 along z beyond an end cap; in the
+    // plane, 0 inside the radius, else that of a circle's disk, I - (radius /
+    // rho) t t^T with t the tangent.
+    Mat3 hessian = Mat3::Zero();
+    if (z != y.z()) hessian(2, 2) = 1.0;
+    Vec3 q_S(y.x(), y.y(), z);
+    if (rho > radius) {
+      const double shrink = radius / rho;
+      q_S.x() *= shrink, q_S.y() *= shrink;
+      const Eigen::Vector2d t(-y.y() / rho, y.x() / rho);
+      hessian.topLeftCorner<2, 2>() =
+          Eigen::Matrix2d::Identity() - shrink * t * t.transpose();
+    }
+    return Projection{pose.fromShape(q_S), pose.hessianFromShape(hessian)};
+  }
+
+  Vec3 support(const Vec3& w) const {
+    const Vec3 w_S = pose.directionToShape(w);
+    const double planar = std::sqrt(w_S.x() * w_S.x() + w_S.y() * w_S.y());
+    // Ties: w along the axis takes the rim point on +x; w in the plane the + cap.
+    const Vec3 rim = planar > 0.0 ? Vec3(radius * w_S.x() / planar, radius * w_S.y() / planar, 0.0)
+                                  : Vec3(radius, 0.0, 0.0);
+    return pose.fromShape(rim + Vec3(0.0, 0.0, w_S.z() < 0.0 ? -half_length : half_length));
+  }
+};
+
+template <typename S>
+struct CylinderTraits {
+  static bool valid(const fcl::Cylinder<S>& cylinder) {
+    return areValidShapeLengths({double(cylinder.radius), double(cylinder.lz)});
+  }
+  static double boundingRadius(const fcl::Cylinder<S>& cylinder) {
+    return std::hypot(double(cylinder.radius), 0.5 * double(cylinder.lz));
+  }
+  static double inflation(const fcl::Cylinder<S>&) { return 0.0; }
+  static CylinderTarget target(const fcl::Cylinder<S>& cylinder, const PoseInDisk& pose) {
+    return CylinderTarget{pose, double(cylinder.radius), 0.5 * double(cylinder.lz)};
+  }
+  /// The axis and the frame's two other axes.
+  static std::array<Vec3, 3> contactDirections(const CylinderTarget& cylinder) {
+    return {cylinder.pose.R.col(2), cylinder.pose.R.col(0), cylinder.pose.R.col(1)};
+  }
+};
+
+}  // namespace
+
+template <typename S>
+struct DiskShapePair<fcl::Cylinder<S>>
+    : GenericDiskShapePair<S, fcl::Cylinder<S>, CylinderTraits<S>> {};
+
+}  // namespace internal
+}  // namespace fcl_disk
+
+FCL_DISK_INSTANTIATE_DISK_SHAPE_PAIR(fcl::Cylinder)

@@ -1,0 +1,122 @@
+// Disk - fcl::Ellipsoid: the generic solver with the ellipsoid's projection (the
+// root t of Eberly's secular equation by safeguarded Newton) and its support.
+// docs/disk_shape_distance.md, section 4.
+#include "../disk_shape_pair.h"
+
+namespace fcl_disk {
+namespace internal {
+namespace {
+
+/// The projection's root t is found to this relative accuracy, within this many
+/// Newton/bisection steps (Newton from the left on the convex, decreasing
+/// secular function converges monotonically; bisection only guards rounding).
+constexpr double kSecularRootTolerance = 4 * std::numeric_limits<double>::epsilon();
+constexpr int kMaxSecularSteps = 100;
+
+/// The solid ellipsoid {sum (y_i / e_i)^2 <= 1} posed in D. Semi-axes may be 0
+/// (a flat ellipse, a segment, a point).
+struct EllipsoidTarget {
+  PoseInDisk pose;
+  Vec3 e;
+
+  Projection project(const Vec3& x) const {
+    const Vec3 y = pose.toShape(x);
+    // Inside (on a zero axis, only y_i == 0 is inside).
+    double level = 0.0;
+    bool off_flat_axis = false;
+    for (int i = 0; i < 3; ++i) {
+      if (e[i] > 0.0) level += (y[i] / e[i]) * (y[i] / e[i]);
+      else off_flat_axis |= y[i] != 0.0;
+    }
+    if (level <= 1.0 && !off_flat_axis) return Projection{x, Mat3::Zero()};
+    // q_i = e_i^2 y_i / (t + e_i^2) with t > 0 the root of
+    // F(t) = sum (e_i y_i / (t + e_i^2))^2 - 1 (convex and decreasing).
+    const Vec3 e2 = e.cwiseProduct(e);
+    const Vec3 ey = e.cwiseProduct(y);
+    auto secular = [&](double t, double* derivative) {
+      double f = -1.0, df = 0.0;
+      for (int i = 0; i < 3; ++i) {
+        if (!(e[i] > 0.0)) continue;
+        const double ratio = ey[i] / (t + e2[i]);
+        f += ratio * ratio;
+        df -= 2.0 * ratio * ratio / (t + e2[i]);
+      }
+      *derivative = df;
+      return f;
+    };
+    // Bracket: F(lo) >= 0 >= F(hi); lo = e_min |y| - e_max^2 is below the root.
+    double e_min = std::numeric_limits<double>::infinity(), e_max = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      if (e[i] > 0.0) e_min = std::min(e_min, e[i]);
+      e_max = std::max(e_max, e[i]);
+    }
+    double lo = std::max(0.0, e_min * y.norm() - e_max * e_max);
+    double hi = std::max(ey.norm(), lo);
+    double t = lo;
+    for (int step = 0; step < kMaxSecularSteps; ++step) {
+      double derivative;
+      const double f = secular(t, &derivative);
+      if (f > 0.0) lo = t; else hi = t;
+      if (f == 0.0) break;
+      double next = derivative < 0.0 ? t - f / derivative : 0.5 * (lo + hi);
+      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+      const bool settled = std::abs(next - t) <= kSecularRootTolerance * std::max(t, e_max * e_max);
+      t = next;
+      if (settled) break;
+    }
+    Vec3 q_S, a, v;  // a = A q (A = diag(1 / e_i^2)), v = M a, M = diag(e_i^2 / (t + e_i^2))
+    Vec3 m_diagonal;
+    for (int i = 0; i < 3; ++i) {
+      const double denominator = t + e2[i];
+      const bool flat = !(e[i] > 0.0);
+      q_S[i] = flat ? 0.0 : e2[i] * y[i] / denominator;
+      a[i] = flat ? 0.0 : y[i] / denominator;
+      m_diagonal[i] = flat ? 0.0 : e2[i] / denominator;
+      v[i] = m_diagonal[i] * a[i];
+    }
+    // D proj = M - v v^T / (a.v) (implicit differentiation of q^T A q = 1).
+    Mat3 Dq = m_diagonal.asDiagonal();
+    const double av = a.dot(v);
+    if (av > 0.0) Dq -= v * v.transpose() / av;
+    return Projection{pose.fromShape(q_S), pose.hessianFromShape(Mat3::Identity() - Dq)};
+  }
+
+  Vec3 support(const Vec3& w) const {
+    // argmax of w.y: A^-1 w / sqrt(w^T A^-1 w), A^-1 = diag(e_i^2).
+    const Vec3 w_S = pose.directionToShape(w);
+    const Vec3 scaled = e.cwiseProduct(w_S);
+    const double length = scaled.norm();
+    if (!(length > 0.0)) return pose.c;  // w along only zero axes: every point ties
+    return pose.fromShape(e.cwiseProduct(scaled) / length);
+  }
+};
+
+template <typename S>
+struct EllipsoidTraits {
+  static bool valid(const fcl::Ellipsoid<S>& ellipsoid) {
+    const auto& radii = ellipsoid.radii;
+    return areValidShapeLengths({double(radii.x()), double(radii.y()), double(radii.z())});
+  }
+  static double boundingRadius(const fcl::Ellipsoid<S>& ellipsoid) {
+    return double(ellipsoid.radii.maxCoeff());
+  }
+  static double inflation(const fcl::Ellipsoid<S>&) { return 0.0; }
+  static EllipsoidTarget target(const fcl::Ellipsoid<S>& ellipsoid, const PoseInDisk& pose) {
+    return EllipsoidTarget{pose, ellipsoid.radii.template cast<double>()};
+  }
+  /// The principal axes.
+  static std::array<Vec3, 3> contactDirections(const EllipsoidTarget& ellipsoid) {
+    return {ellipsoid.pose.R.col(0), ellipsoid.pose.R.col(1), ellipsoid.pose.R.col(2)};
+  }
+};
+
+}  // namespace
+
+template <typename S>
+struct DiskShapePair<fcl::Ellipsoid<S>>
+    : GenericDiskShapePair<S, fcl::Ellipsoid<S>, EllipsoidTraits<S>> {};
+
+}  // namespace internal
+}  // namespace fcl_disk
+
+FCL_DISK_INSTANTIATE_DISK_SHAPE_PAIR(fcl::Ellipsoid)
