@@ -1,7 +1,9 @@
 // The one place that wires disks into FCL's dispatch. Read top to bottom:
 //   1. what a disk-disk entry does (distance, collision);
-//   2. the wrappers that sit in FCL's GEOM_CYLINDER x GEOM_CYLINDER slots and
-//      forward every pair that is not two Disks to FCL's original function;
+//   1b. the table of the other shapes a Disk is answered against by fcl_disk,
+//      and what such an entry does;
+//   2. the wrappers that sit in FCL's GEOM_CYLINDER row and column and forward
+//      every pair fcl_disk does not answer to FCL's original function;
 //   3. installing them into the tables user code sees, and into the private
 //      copies inside libfcl.so (docs/fcl_hook.md explains why both);
 //   4. a probe that proves the hook answers plain fcl::distance / fcl::collide;
@@ -14,10 +16,12 @@
 #include <atomic>
 #include <cstdint>
 #include <cstring>
+#include <iostream>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 #include <limits>
+#include <type_traits>
 #include <typeinfo>
 #include <utility>
 #include <vector>
@@ -30,6 +34,7 @@
 #include "fcl_disk/almohamad_selim.h"
 #include "fcl_disk/disk.h"
 #include "fcl_disk/disk_intersection.h"
+#include "fcl_disk/disk_shape_distance.h"
 #include "fcl_disk/exact_distance.h"
 #include "fcl_disk/fcl_templates.h"
 
@@ -135,45 +140,127 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
   return result.min_distance;  // as FCL's ShapeShapeDistance: the result's minimum
 }
 
-template <typename S>
-std::size_t answerDiskCollision(const Disk<S>& disk1, const Transform3<S>& X_W1,
-                                const Disk<S>& disk2, const Transform3<S>& X_W2,
-                                const fcl::CollisionRequest<S>& request,
-                                fcl::CollisionResult<S>& result) {
-  // Mirrors FCL's ShapeCollisionTraversalNode::leafTesting for shape pairs.
+/// FCL's shape-pair collision (ShapeCollisionTraversalNode::leafTesting), with
+/// `intersect(&contact)` deciding the pair: a contact when requested and room
+/// is left, a cost source from the overlap of the AABBs.
+template <typename S, typename Shape1, typename Shape2, typename Intersect>
+std::size_t answerCollision(const Shape1& shape1, const Transform3<S>& X_W1, const Shape2& shape2,
+                            const Transform3<S>& X_W2, const fcl::CollisionRequest<S>& request,
+                            fcl::CollisionResult<S>& result, Intersect intersect) {
   if (request.isSatisfied(result)) return result.numContacts();
   ++t_disk_answers;
-  if (!(disk1.isOccupied() && disk2.isOccupied())) return result.numContacts();
+  if (!(shape1.isOccupied() && shape2.isOccupied())) return result.numContacts();
   DiskContact<S> contact;
-  if (!intersectDisks(disk1.radius, X_W1, disk2.radius, X_W2, &contact)) {
-    return result.numContacts();
-  }
+  if (!intersect(&contact)) return result.numContacts();
   if (request.num_max_contacts > result.numContacts()) {
     using Contact = fcl::Contact<S>;
     if (request.enable_contact) {
-      result.addContact(Contact(&disk1, &disk2, Contact::NONE, Contact::NONE, contact.pos,
+      result.addContact(Contact(&shape1, &shape2, Contact::NONE, Contact::NONE, contact.pos,
                                 contact.normal, contact.penetration_depth));
     } else {
-      result.addContact(Contact(&disk1, &disk2, Contact::NONE, Contact::NONE));
+      result.addContact(Contact(&shape1, &shape2, Contact::NONE, Contact::NONE));
     }
   }
   if (request.enable_cost) {
     fcl::AABB<S> aabb1, aabb2, overlap;
-    fcl::computeBV(disk1, X_W1, aabb1);
-    fcl::computeBV(disk2, X_W2, aabb2);
+    fcl::computeBV(shape1, X_W1, aabb1);
+    fcl::computeBV(shape2, X_W2, aabb2);
     aabb1.overlap(aabb2, overlap);
-    result.addCostSource(fcl::CostSource<S>(overlap, disk1.cost_density * disk2.cost_density),
+    result.addCostSource(fcl::CostSource<S>(overlap, shape1.cost_density * shape2.cost_density),
                          request.num_max_cost_sources);
   }
   return result.numContacts();
 }
 
+template <typename S>
+std::size_t answerDiskCollision(const Disk<S>& disk1, const Transform3<S>& X_W1,
+                                const Disk<S>& disk2, const Transform3<S>& X_W2,
+                                const fcl::CollisionRequest<S>& request,
+                                fcl::CollisionResult<S>& result) {
+  return answerCollision(disk1, X_W1, disk2, X_W2, request, result, [&](DiskContact<S>* contact) {
+    return intersectDisks(disk1.radius, X_W1, disk2.radius, X_W2, contact);
+  });
+}
+
+// ---------------------------------------------------------------------------
+// 1b. The table: the FCL node types a Disk is answered against by fcl_disk, and
+//     the shape class behind each (its solver: src/pairs/disk_<shape>.cpp,
+//     include/fcl_disk/disk_shape_distance.h). A node type not listed keeps
+//     FCL's own function (GJK on the flat cylinder). Adding a pair: its file in
+//     src/pairs/ and one line here.
+
+template <int NodeType, typename S>
+struct DiskPairShape {
+  using type = void;  // not answered by fcl_disk
+};
+#define FCL_DISK_PAIR(node_type, ShapeTemplate) \
+  template <typename S>                          \
+  struct DiskPairShape<fcl::node_type, S> {      \
+    using type = ShapeTemplate<S>;               \
+  };
+
+FCL_DISK_PAIR(GEOM_SPHERE, fcl::Sphere)
+FCL_DISK_PAIR(GEOM_BOX, fcl::Box)
+FCL_DISK_PAIR(GEOM_CAPSULE, fcl::Capsule)
+FCL_DISK_PAIR(GEOM_CYLINDER, fcl::Cylinder)  // a real cylinder (two Disks: section 1)
+FCL_DISK_PAIR(GEOM_CONE, fcl::Cone)
+FCL_DISK_PAIR(GEOM_ELLIPSOID, fcl::Ellipsoid)
+FCL_DISK_PAIR(GEOM_CONVEX, fcl::Convex)
+FCL_DISK_PAIR(GEOM_HALFSPACE, fcl::Halfspace)
+FCL_DISK_PAIR(GEOM_PLANE, fcl::Plane)
+FCL_DISK_PAIR(GEOM_TRIANGLE, fcl::TriangleP)
+#undef FCL_DISK_PAIR
+
+template <int NodeType, typename S>
+constexpr bool kHasDiskPair = !std::is_void<typename DiskPairShape<NodeType, S>::type>::value;
+
+/// Distance between a Disk and another shape, in FCL's argument order: the
+/// disk is o1 when `disk_first`, else o2 (the points are swapped to match).
+template <typename S, typename Shape>
+S answerDiskShapeDistance(const Disk<S>& disk, const Transform3<S>& X_WD, const Shape& shape,
+                          const Transform3<S>& X_WS, bool disk_first,
+                          fcl::DistanceResult<S>& result) {
+  if (distanceIsSettled(result)) return result.min_distance;
+  ++t_disk_answers;
+  const DiskShapeDistanceResult<S> answer = diskShapeDistance(disk.radius, X_WD, shape, X_WS);
+  const CollisionGeometry<S>* o1 = &disk;
+  const CollisionGeometry<S>* o2 = &shape;
+  if (!disk_first) std::swap(o1, o2);
+  if (std::isnan(answer.distance)) return answerNoDistance<S>(o1, o2, result);
+  // Overlap: distance 0 with a common point as both nearest points, as for disk pairs.
+  if (disk_first) {
+    keepIfNearer(result, answer.distance, o1, o2, answer.p_W_disk, answer.p_W_shape);
+  } else {
+    keepIfNearer(result, answer.distance, o1, o2, answer.p_W_shape, answer.p_W_disk);
+  }
+  return result.min_distance;
+}
+
+/// Collision between a Disk and another shape, in FCL's argument order; the
+/// contact normal points from o1 to o2 (FCL's convention), so it is flipped
+/// when the disk is o2.
+template <typename S, typename Shape>
+std::size_t answerDiskShapeCollision(const Disk<S>& disk, const Transform3<S>& X_WD,
+                                     const Shape& shape, const Transform3<S>& X_WS,
+                                     bool disk_first, const fcl::CollisionRequest<S>& request,
+                                     fcl::CollisionResult<S>& result) {
+  const auto intersect = [&](DiskContact<S>* contact) {
+    if (!diskShapeIntersect(disk.radius, X_WD, shape, X_WS, contact)) return false;
+    if (!disk_first) contact->normal = -contact->normal;
+    return true;
+  };
+  return disk_first
+             ? answerCollision(disk, X_WD, shape, X_WS, request, result, intersect)
+             : answerCollision(shape, X_WS, disk, X_WD, request, result, intersect);
+}
+
 // ---------------------------------------------------------------------------
 // 2. Wrappers for the slots of FCL's tables that can see a Disk: the
-//    GEOM_CYLINDER row and column. Disk-disk pairs get fcl_disk's answers; a
-//    pair with one Disk whose poses describe no disk pair gets NaN / no contact
-//    (FCL's GJK would abort on NaN, facts: Debian keeps asserts on); every other
-//    pair goes to FCL's original entry unchanged.
+//    GEOM_CYLINDER row and column. Disk-disk pairs and a Disk against a shape
+//    of the table of section 1b get fcl_disk's answers; a pair with one Disk
+//    whose poses describe no disk pair gets NaN / no contact (FCL's GJK would
+//    abort on NaN, facts: Debian keeps asserts on); every other pair, real
+//    cylinders included, goes to FCL's original entry unchanged.
 //
 // `Solver` is only passed through to FCL's original entry, never dereferenced
 // here, so one wrapper shape serves every table; `Table` gives each patched table
@@ -191,9 +278,28 @@ bool fitForFcl(const Disk<S>* disk1, const Transform3<S>& tf1, const Disk<S>* di
   return fit(disk1, tf1) && fit(disk2, tf2);
 }
 
+/// What FCL's entry does for a pair its table has no function for (the slot was
+/// empty before fcl_disk filled it for Disks): the same warning, and its result.
+template <typename S, typename Value>
+Value fclNotSupported(const char* query, const CollisionGeometry<S>* o1,
+                      const CollisionGeometry<S>* o2, Value value) {
+  std::cerr << "Warning: " << query << " function between node type " << o1->getNodeType()
+            << " and node type " << o2->getNodeType() << " is not supported\n";
+  return value;
+}
+
+/// The shape class of a node type answered against a Disk (section 1b).
+template <int NodeType, typename S>
+using PairShape = typename DiskPairShape<NodeType, S>::type;
+
+template <typename S, int Row, int Col>
+constexpr bool kSlotAnswersDisks = (Row == fcl::GEOM_CYLINDER && kHasDiskPair<Col, S>) ||
+                                   (Col == fcl::GEOM_CYLINDER && kHasDiskPair<Row, S>);
+
 template <typename S, typename Solver, int Table, int Row, int Col>
 struct DistanceSlot {
   static constexpr int kRow = Row, kCol = Col;
+  static constexpr bool kAnswersDisks = kSlotAnswersDisks<S, Row, Col>;
   using Entry = S (*)(const CollisionGeometry<S>*, const Transform3<S>&,
                       const CollisionGeometry<S>*, const Transform3<S>&, const Solver*,
                       const fcl::DistanceRequest<S>&, fcl::DistanceResult<S>&);
@@ -205,16 +311,31 @@ struct DistanceSlot {
     const Disk<S>* disk1 = Row == fcl::GEOM_CYLINDER ? asDisk(o1) : nullptr;
     const Disk<S>* disk2 = Col == fcl::GEOM_CYLINDER ? asDisk(o2) : nullptr;
     if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, result);
+    if constexpr (Row == fcl::GEOM_CYLINDER && kHasDiskPair<Col, S>) {
+      if (disk1) {
+        return answerDiskShapeDistance(*disk1, tf1, static_cast<const PairShape<Col, S>&>(*o2),
+                                       tf2, /*disk_first=*/true, result);
+      }
+    }
+    if constexpr (Col == fcl::GEOM_CYLINDER && kHasDiskPair<Row, S>) {
+      if (disk2) {
+        return answerDiskShapeDistance(*disk2, tf2, static_cast<const PairShape<Row, S>&>(*o1),
+                                       tf1, /*disk_first=*/false, result);
+      }
+    }
     if ((disk1 || disk2) && !fitForFcl(disk1, tf1, disk2, tf2)) {
       return answerNoDistance(o1, o2, result);
     }
-    return original.load(std::memory_order_acquire)(o1, tf1, o2, tf2, solver, request, result);
+    const Entry fcl_entry = original.load(std::memory_order_acquire);
+    if (!fcl_entry) return fclNotSupported("distance", o1, o2, std::numeric_limits<S>::max());
+    return fcl_entry(o1, tf1, o2, tf2, solver, request, result);
   }
 };
 
 template <typename S, typename Solver, int Table, int Row, int Col>
 struct CollisionSlot {
   static constexpr int kRow = Row, kCol = Col;
+  static constexpr bool kAnswersDisks = kSlotAnswersDisks<S, Row, Col>;
   using Entry = std::size_t (*)(const CollisionGeometry<S>*, const Transform3<S>&,
                                 const CollisionGeometry<S>*, const Transform3<S>&,
                                 const Solver*, const fcl::CollisionRequest<S>&,
@@ -228,21 +349,38 @@ struct CollisionSlot {
     const Disk<S>* disk1 = Row == fcl::GEOM_CYLINDER ? asDisk(o1) : nullptr;
     const Disk<S>* disk2 = Col == fcl::GEOM_CYLINDER ? asDisk(o2) : nullptr;
     if (disk1 && disk2) return answerDiskCollision(*disk1, tf1, *disk2, tf2, request, result);
+    if constexpr (Row == fcl::GEOM_CYLINDER && kHasDiskPair<Col, S>) {
+      if (disk1) {
+        return answerDiskShapeCollision(*disk1, tf1, static_cast<const PairShape<Col, S>&>(*o2),
+                                        tf2, /*disk_first=*/true, request, result);
+      }
+    }
+    if constexpr (Col == fcl::GEOM_CYLINDER && kHasDiskPair<Row, S>) {
+      if (disk2) {
+        return answerDiskShapeCollision(*disk2, tf2, static_cast<const PairShape<Row, S>&>(*o1),
+                                        tf1, /*disk_first=*/false, request, result);
+      }
+    }
     // No contact can be shown for input that describes no pose.
     if ((disk1 || disk2) && !fitForFcl(disk1, tf1, disk2, tf2)) return result.numContacts();
-    return original.load(std::memory_order_acquire)(o1, tf1, o2, tf2, solver, request, result);
+    const Entry fcl_entry = original.load(std::memory_order_acquire);
+    if (!fcl_entry) return fclNotSupported("collision", o1, o2, std::size_t(0));
+    return fcl_entry(o1, tf1, o2, tf2, solver, request, result);
   }
 };
 
-/// Replaces table[kRow][kCol] by Wrapper::call, saving the original; an empty
-/// slot (a pair FCL does not support) stays empty. Atomic stores: other threads
-/// may be dispatching non-disk pairs.
+/// Replaces table[kRow][kCol] by Wrapper::call, saving the original. An empty
+/// slot (a pair FCL does not support) is filled only where the wrapper answers
+/// Disks (e.g. cylinder-triangle distance); for real cylinders it then behaves
+/// as FCL's empty slot. Atomic stores: other threads may be dispatching
+/// non-disk pairs.
 template <typename Wrapper, typename Table>
 void installIntoSlot(Table& matrix) {
   auto& slot = matrix[Wrapper::kRow][Wrapper::kCol];
   using Entry = typename Wrapper::Entry;
   Entry current = __atomic_load_n(reinterpret_cast<Entry*>(&slot), __ATOMIC_ACQUIRE);
-  if (current == nullptr || current == &Wrapper::call) return;
+  if (current == &Wrapper::call) return;
+  if (current == nullptr && !Wrapper::kAnswersDisks) return;
   Wrapper::original.store(current, std::memory_order_release);
   __atomic_store_n(reinterpret_cast<Entry*>(&slot), &Wrapper::call, __ATOMIC_RELEASE);
 }

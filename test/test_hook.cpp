@@ -53,9 +53,10 @@ double fclDistance(const fcl::CollisionObjectd& a, const fcl::CollisionObjectd& 
   return d;
 }
 
-// Real cylinders and disk-versus-other-shape pairs must get exactly what FCL's
-// own narrow-phase solver computes (the entry FCL would have called).
-TEST(Hook, OtherPairsKeepFclsOwnAnswers) {
+// Real cylinders against other shapes get exactly what FCL's own narrow-phase
+// solver computes (the entry FCL would have called); a Disk against another
+// shape gets fcl_disk's diskShapeDistance(), in both argument orders.
+TEST(Hook, RealCylindersKeepFclsAnswersDisksGetFcl_disks) {
   fcl_disk::registerDiskFunctions();
   auto cylinder = std::make_shared<fcl::Cylinderd>(0.5, 1.0);
   auto disk = std::make_shared<fcl_disk::Diskd>(0.7);
@@ -64,34 +65,39 @@ TEST(Hook, OtherPairsKeepFclsOwnAnswers) {
   std::mt19937_64 rng(7);
   for (int trial = 0; trial < 50; ++trial) {
     const Transform3d X1 = randomPose(rng, 2.0), X2 = randomPose(rng, 2.0);
+    {
+      SCOPED_TRACE("cylinder-cylinder and cylinder-box: FCL's");
+      fcl::detail::GJKSolver_libccd<double> solver;
+      double expected_cylinder = 0, expected_box = 0;
+      Vec3 p1, p2;
+      solver.shapeDistance(*cylinder, X1, *cylinder, X2, &expected_cylinder, &p1, &p2);
+      solver.shapeDistance(*cylinder, X1, *box, X2, &expected_box, &p1, &p2);
+      fcl::CollisionObjectd a(cylinder, X1), b(cylinder, X2), c(box, X2);
+      EXPECT_EQ(fclDistance(a, b, fcl::GST_LIBCCD), expected_cylinder);
+      EXPECT_EQ(fclDistance(a, c, fcl::GST_LIBCCD), expected_box);
+    }
+    const auto disk_box = fcl_disk::diskShapeDistance(0.7, X1, *box, X2);
+    const auto disk_sphere = fcl_disk::diskShapeDistance(0.7, X1, *sphere, X2);
+    const auto disk_cylinder = fcl_disk::diskShapeDistance(0.7, X1, *cylinder, X2);
     const struct {
       const char* name;
-      std::shared_ptr<fcl::CollisionGeometryd> a, b;
-    } pairs[] = {{"cylinder-cylinder", cylinder, cylinder},
-                 {"disk-box", disk, box},
-                 {"sphere-disk", sphere, disk},
-                 {"disk-cylinder", disk, cylinder}};
+      std::shared_ptr<fcl::CollisionGeometryd> other;
+      fcl_disk::DiskShapeDistanceResult<double> expected;
+    } pairs[] = {{"disk-box", box, disk_box},
+                 {"disk-sphere", sphere, disk_sphere},
+                 {"disk-cylinder", cylinder, disk_cylinder}};
     for (const auto& pair : pairs) {
       SCOPED_TRACE(pair.name);
-      fcl::CollisionObjectd a(pair.a, X1), b(pair.b, X2);
-      fcl::detail::GJKSolver_libccd<double> solver;
-      double expected = 0;
-      Vec3 p1, p2;
-      // What ShapeDistanceTraversalNode does for an unsigned request.
-      const auto* ga = pair.a.get();
-      const auto* gb = pair.b.get();
-      auto shape_distance = [&](const auto& s1, const auto& s2) {
-        solver.shapeDistance(s1, X1, s2, X2, &expected, &p1, &p2);
-      };
-      if (pair.a == cylinder || pair.a == disk) {
-        const auto& s1 = static_cast<const fcl::Cylinderd&>(*ga);
-        if (pair.b == box) shape_distance(s1, static_cast<const fcl::Boxd&>(*gb));
-        else shape_distance(s1, static_cast<const fcl::Cylinderd&>(*gb));
-      } else {
-        shape_distance(static_cast<const fcl::Sphered&>(*ga),
-                       static_cast<const fcl::Cylinderd&>(*gb));
+      fcl::CollisionObjectd d(disk, X1), o(pair.other, X2);
+      for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+        fcl::DistanceResultd disk_first, disk_second;
+        EXPECT_EQ(fclDistance(d, o, solver, &disk_first), pair.expected.distance);
+        EXPECT_EQ(disk_first.nearest_points[0], pair.expected.p_W_disk);
+        EXPECT_EQ(disk_first.nearest_points[1], pair.expected.p_W_shape);
+        EXPECT_EQ(fclDistance(o, d, solver, &disk_second), pair.expected.distance);
+        EXPECT_EQ(disk_second.nearest_points[0], pair.expected.p_W_shape);
+        EXPECT_EQ(disk_second.nearest_points[1], pair.expected.p_W_disk);
       }
-      EXPECT_EQ(fclDistance(a, b, fcl::GST_LIBCCD), expected);
     }
   }
 }

@@ -50,6 +50,13 @@ struct DiskApi {
                                          double r2, const fcl::Transform3<double>& X_W2);
   IntersectAnswer<float> (*intersect_f)(float r1, const fcl::Transform3<float>& X_W1, float r2,
                                         const fcl::Transform3<float>& X_W2);
+  /// diskShapeDistance() against a real fcl::Cylinder(radius, lz): p1 on the
+  /// disk, p2 on the cylinder.
+  ExactAnswer<double> (*disk_cylinder_d)(double r, const fcl::Transform3<double>& X_WD,
+                                         double radius, double lz,
+                                         const fcl::Transform3<double>& X_WC);
+  ExactAnswer<float> (*disk_cylinder_f)(float r, const fcl::Transform3<float>& X_WD, float radius,
+                                        float lz, const fcl::Transform3<float>& X_WC);
 };
 
 /// The DiskApi of the binary this is linked into (consumer_disk_api.cpp; only in

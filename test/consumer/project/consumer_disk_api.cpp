@@ -32,12 +32,20 @@ IntersectAnswer<S> intersect(S r1, const fcl::Transform3<S>& X_W1, S r2,
   return answer;
 }
 
+template <typename S>
+ExactAnswer<S> diskCylinder(S r, const fcl::Transform3<S>& X_WD, S radius, S lz,
+                            const fcl::Transform3<S>& X_WC) {
+  const fcl_disk::DiskShapeDistanceResult<S> answer =
+      fcl_disk::diskShapeDistance(r, X_WD, fcl::Cylinder<S>(radius, lz), X_WC);
+  return {answer.distance, answer.p_W_disk, answer.p_W_shape};
+}
+
 }  // namespace
 
 const DiskApi& linkedDiskApi() {
   static const DiskApi api{CONSUMER_BINARY_NAME,  makeDisk<double>,  makeDisk<float>,
                            exact<double>,         exact<float>,      intersect<double>,
-                           intersect<float>};
+                           intersect<float>,      diskCylinder<double>, diskCylinder<float>};
   return api;
 }
 
