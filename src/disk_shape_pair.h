@@ -1,4 +1,4 @@
-// Internal: what every disk-shape pair shares. The shape posed in the disk's
+// Internal: what every disk-shape pair shares. The disk posed in the shape's
 // frame, input validation, the world-frame result, the contact, and the driver
 // that runs the generic solver (src/disk_shape_solver.h) for a pair given its
 // Target. A pair file (src/pairs/disk_<shape>.cpp) specialises DiskShapePair for
@@ -6,8 +6,8 @@
 #pragma once
 
 #include <algorithm>
-#include <cmath>
 #include <array>
+#include <cmath>
 #include <initializer_list>
 #include <limits>
 
@@ -17,27 +17,18 @@
 namespace fcl_disk {
 namespace internal {
 
-/// The shape's pose X_DS in the disk's frame D (double, relative to the disk's
-/// centre, so a common translation costs only the rounding of c_S - c_D).
-struct PoseInDisk {
-  Mat3 R;  ///< rotation of the shape's frame in D.
-  Vec3 c;  ///< origin of the shape's frame in D.
-
-  template <typename S>
-  static PoseInDisk of(const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
-    const Mat3 R_WD = X_WD.linear().template cast<double>();
-    const Vec3 offset =
-        X_WS.translation().template cast<double>() - X_WD.translation().template cast<double>();
-    return PoseInDisk{R_WD.transpose() * X_WS.linear().template cast<double>(),
-                      R_WD.transpose() * offset};
-  }
-  Vec3 toShape(const Vec3& x) const { return R.transpose() * (x - c); }
-  Vec3 fromShape(const Vec3& y) const { return c + R * y; }
-  Vec3 directionToShape(const Vec3& w) const { return R.transpose() * w; }
-  Vec3 directionFromShape(const Vec3& w) const { return R * w; }
-  /// A Hessian H_S of the shape frame seen in D: R H_S R^T.
-  Mat3 hessianFromShape(const Mat3& H) const { return R * H * R.transpose(); }
-};
+/// The disk of radius r and pose X_WD in the frame S of a shape with pose X_WS
+/// (double; the offset c_D - c_S is formed first, so a common translation costs
+/// only its rounding).
+template <typename S>
+DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
+  const Mat3 R_WS = X_WS.linear().template cast<double>();
+  const Mat3 R_SD = R_WS.transpose() * X_WD.linear().template cast<double>();
+  const Vec3 offset =
+      X_WD.translation().template cast<double>() - X_WS.translation().template cast<double>();
+  return DiskInShape{R_WS.transpose() * offset, R_SD.col(0), R_SD.col(1), R_SD.col(2),
+                     double(radius)};
+}
 
 /// Whether every length of a shape is usable: finite, >= 0, within the range of
 /// disk lengths (kMaxDiskLength: squares stay finite).
@@ -69,28 +60,33 @@ bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
   return isValidDiskRadius(radius) && isValidDiskPose(X_WD) && isValidDiskPose(X_WS);
 }
 
+/// A point of frame S in the world.
 template <typename S>
-DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WD,
+Vec3 toWorldPoint(const fcl::Transform3<S>& X_WS, const Vec3& p_S) {
+  return X_WS.translation().template cast<double>() + X_WS.linear().template cast<double>() * p_S;
+}
+
+template <typename S>
+DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
                                    const DiskShapeSolution& solution) {
-  const Mat3 R_WD = X_WD.linear().template cast<double>();
-  const Vec3 c_D = X_WD.translation().template cast<double>();
   DiskShapeDistanceResult<S> result;
   result.distance = S(solution.distance);
   result.lower_bound = S(std::min(solution.lower_bound, solution.distance));
-  result.p_W_disk = (c_D + R_WD * solution.p).template cast<S>();
-  result.p_W_shape = (c_D + R_WD * solution.q).template cast<S>();
+  result.p_W_disk = toWorldPoint(X_WS, solution.p).template cast<S>();
+  result.p_W_shape = toWorldPoint(X_WS, solution.q).template cast<S>();
   result.iterations = solution.iterations;
   return result;
 }
 
-/// The contact of an intersecting pair (frame D in, world out): pos the common
+/// The contact of an intersecting pair (frame S in, world out): pos the common
 /// point; among the unit candidate directions w (the disk's normals and the
-/// shape's own), the one whose separating translation of the shape,
-/// depth(w) = max_disk w.k - min_shape w.y, is smallest (docs section 5).
+/// shape's own, both signs), the one whose separating translation of the
+/// shape, depth(w) = max_disk w.k - min_shape w.y, is smallest (docs section 5).
 template <typename S, typename Directions, typename DepthAlong>
-DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WD, const Vec3& common_point,
-                              const Directions& shape_directions, DepthAlong depth_along) {
-  Vec3 best_direction = Vec3::UnitZ();
+DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WS, const DiskInShape& disk,
+                              const Vec3& common_point, const Directions& shape_directions,
+                              DepthAlong depth_along) {
+  Vec3 best_direction = disk.n;
   double best_depth = std::numeric_limits<double>::infinity();
   auto consider = [&](const Vec3& w) {
     const double length = w.norm();
@@ -99,16 +95,15 @@ DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WD, const Vec3& common
     const double depth = depth_along(unit);
     if (depth < best_depth) best_depth = depth, best_direction = unit;
   };
-  consider(Vec3::UnitZ());
-  consider(-Vec3::UnitZ());
+  consider(disk.n);
+  consider(-disk.n);
   for (const Vec3& w : shape_directions) {
     consider(w);
     consider(-w);
   }
-  const Mat3 R_WD = X_WD.linear().template cast<double>();
   DiskContact<S> contact;
-  contact.pos = (X_WD.translation().template cast<double>() + R_WD * common_point).template cast<S>();
-  contact.normal = (R_WD * best_direction).template cast<S>();
+  contact.pos = toWorldPoint(X_WS, common_point).template cast<S>();
+  contact.normal = (X_WS.linear().template cast<double>() * best_direction).template cast<S>();
   contact.penetration_depth = S(std::max(best_depth, 0.0));
   return contact;
 }
@@ -121,11 +116,11 @@ template <typename Shape>
 struct DiskShapePair;
 
 /// distance() and intersect() from the generic solver, for a Traits class with
-///   static bool valid(const Shape&);                 // dimensions usable
-///   static double boundingRadius(const Shape&);      // about the shape's origin
-///   static double inflation(const Shape&);           // rho: X = core + B_rho
-///   static Target target(const Shape&, const PoseInDisk&);  // the core, in D
-///   static auto contactDirections(const Target&);  // a range of Vec3, frame D
+///   static bool valid(const Shape&);                // dimensions usable
+///   static double boundingRadius(const Shape&);     // about the shape's origin
+///   static double inflation(const Shape&);          // rho: X = core + B_rho
+///   static Target target(const Shape&);             // the core, in the shape frame
+///   static auto contactDirections(const Target&);   // a range of Vec3, shape frame
 template <typename S, typename Shape, typename Traits>
 struct GenericDiskShapePair {
   static DiskShapeDistanceResult<S> distance(S radius, const fcl::Transform3<S>& X_WD,
@@ -133,30 +128,27 @@ struct GenericDiskShapePair {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) {
       return nanDiskShapeResult<S>();
     }
-    const PoseInDisk pose = PoseInDisk::of(X_WD, X_WS);
-    const auto target = Traits::target(shape, pose);
-    const double scale = double(radius) + Traits::boundingRadius(shape) + pose.c.norm();
-    return toWorld(X_WD, solveDiskShape(target, double(radius), Traits::inflation(shape), scale,
-                                        SolverGoal::distance));
+    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
+    return toWorld(X_WS, solveDiskShape(Traits::target(shape), disk, Traits::inflation(shape),
+                                        scale, SolverGoal::distance));
   }
 
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) return false;
-    const PoseInDisk pose = PoseInDisk::of(X_WD, X_WS);
-    const auto target = Traits::target(shape, pose);
-    const double r = double(radius);
+    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
-    const double scale = r + Traits::boundingRadius(shape) + pose.c.norm();
+    const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     const DiskShapeSolution solution =
-        solveDiskShape(target, r, rho, scale, SolverGoal::intersection);
+        solveDiskShape(target, disk, rho, scale, SolverGoal::intersection);
     if (!(solution.distance <= kShapeTouchingTolerance * scale)) return false;
     if (contact) {
       const auto depth_along = [&](const Vec3& w) {
-        const double lowest = w.dot(target.support(-w)) - rho;
-        return r * std::sqrt(w.x() * w.x() + w.y() * w.y()) - lowest;
+        return disk.support(w) - (w.dot(target.support(-w)) - rho);
       };
-      *contact = contactInWorld<S>(X_WD, solution.p, Traits::contactDirections(target),
+      *contact = contactInWorld<S>(X_WS, disk, solution.p, Traits::contactDirections(target),
                                    depth_along);
     }
     return true;

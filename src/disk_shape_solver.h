@@ -1,22 +1,24 @@
 // Internal: the generic certified solver for a disk against a convex set X, given
-// X's projection and support in the disk's frame. Derivation and notation:
+// X's projection and support in X's own frame. Derivation and notation:
 // docs/disk_shape_distance.md (psi, g, H, the certificate g(w), inflation rho).
 //
-// Frame D: the disk is {(s, 0) : |s| <= r}, s in R^2, centre at the origin, normal
-// +Z. Everything is in double, relative to the disk's centre.
+// Frame S: X's own frame; the disk has centre c, in-plane axes u, v and normal n
+// there (DiskInShape), and is {x(s) = c + s_x u + s_y v : |s| <= r}, s in R^2.
+// Everything is in double. Working in X's frame keeps X's projection and
+// support free of rotations (a box clamps, a support picks a vertex).
 //
-// A Target (the convex set X, posed in D) provides
-//   Projection project(const Vec3& x) const;  // q = proj_X(x), and psi's Hessian
+// A Target (the convex set X, in its frame) provides
+//   Projection project(const Vec3& y) const;  // q = proj_X(y), and psi's Hessian
 //   Vec3 support(const Vec3& w) const;        // a point of X maximising w.y
 // and the solver works on X inflated by `rho` >= 0 (a sphere is a point
 // inflated, a capsule a segment): dist(x, X + B_rho) = max(dist(x, X) - rho, 0).
 #pragma once
 
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -29,13 +31,70 @@ namespace internal {
 
 using Mat2 = Eigen::Matrix2d;
 
-/// proj_X(x) and the Hessian of psi_3(x) = dist(x, X)^2 / 2 there, I - D proj_X(x)
-/// (symmetric, 0 <= H <= I; 0 inside X). Where proj_X is not differentiable
+/// The Hessian of psi_3(x) = dist(x, X)^2 / 2, I - D proj_X(x) (symmetric,
+/// 0 <= H <= I; 0 inside X), kept factored as H = a I + sum_k b_k v_k v_k^T
+/// with at most four terms: for FCL's shapes the v_k are the shape's axes or
+/// the feature's normal and tangents, so nothing 3x3 is ever multiplied out.
+/// The solver needs only H's 2x2 block over the disk's plane and H w.
+struct FactoredHessian {
+  static constexpr int kMaxTerms = 4;
+  double identity{0};
+  int count{0};
+  std::array<double, kMaxTerms> weight{};
+  std::array<Vec3, kMaxTerms> direction{};
+
+  static FactoredHessian scaledIdentity(double a) {
+    FactoredHessian H;
+    H.identity = a;
+    return H;
+  }
+  FactoredHessian& add(double b, const Vec3& v) {
+    weight[count] = b;
+    direction[count] = v;
+    ++count;
+    return *this;
+  }
+  /// w^T H w.
+  double quadratic(const Vec3& w) const {
+    double value = identity * w.squaredNorm();
+    for (int k = 0; k < count; ++k) {
+      const double along = direction[k].dot(w);
+      value += weight[k] * along * along;
+    }
+    return value;
+  }
+  Vec3 times(const Vec3& w) const {
+    Vec3 product = identity * w;
+    for (int k = 0; k < count; ++k) product += (weight[k] * direction[k].dot(w)) * direction[k];
+    return product;
+  }
+};
+
+/// proj_X(x) and psi's Hessian there. Where proj_X is not differentiable
 /// (region boundaries) either side's Hessian will do: the solver's line search
 /// and certificate do not rely on it, only its speed does.
 struct Projection {
   Vec3 q;
-  Mat3 hessian;
+  FactoredHessian hessian;
+};
+
+/// The disk in X's frame: centre c, orthonormal in-plane axes u, v, normal n,
+/// radius r.
+struct DiskInShape {
+  Vec3 c, u, v, n;
+  double r;
+
+  Vec3 point(const Vec2& s) const { return c + s.x() * u + s.y() * v; }
+  /// (u.w, v.w): w's in-plane coordinates.
+  Vec2 inPlane(const Vec3& w) const { return Vec2(u.dot(w), v.dot(w)); }
+  /// h_K(w) = max over the disk of w.k = w.c + r |P w|.
+  double support(const Vec3& w) const { return w.dot(c) + r * inPlane(w).norm(); }
+  /// The disk point nearest y: y's foot on the disk's plane, clamped to the rim.
+  Vec2 nearest(const Vec3& y) const {
+    const Vec2 foot = inPlane(y - c);
+    const double length = foot.norm();
+    return length > r ? Vec2(foot.x() * (r / length), foot.y() * (r / length)) : foot;
+  }
 };
 
 /// What the solver is asked: the distance, or only whether the sets meet (which
@@ -43,8 +102,8 @@ struct Projection {
 enum class SolverGoal { distance, intersection };
 
 struct DiskShapeSolution {
-  Vec3 p{Vec3::Zero()};   ///< point of the disk, frame D.
-  Vec3 q{Vec3::Zero()};   ///< point of X + B_rho, frame D.
+  Vec3 p{Vec3::Zero()};   ///< point of the disk, frame S.
+  Vec3 q{Vec3::Zero()};   ///< point of X + B_rho, frame S.
   double distance{0};     ///< |q - p|; 0 with p == q when the sets meet.
   double lower_bound{0};  ///< the certificate, <= the true distance.
   int iterations{0};
@@ -62,8 +121,8 @@ constexpr double kShapeGapTolerance = 1e-14;
 /// Closer than this many scene sizes counts as touching for the intersection
 /// goal (the disk-disk intersection test's tolerance).
 constexpr double kShapeTouchingTolerance = kTouchingTolerance;
-/// The rounding of the gradient (x - q)_xy, relative to scale: x and q carry
-/// a few ulps of scale each.
+/// The rounding of the gradient over the disk, relative to scale: x and q
+/// carry a few ulps of scale each.
 constexpr double kShapeGradientRounding = 8 * std::numeric_limits<double>::epsilon();
 /// Iteration cap. Converged pairs need 1-6 (Newton on a piecewise quadratic or
 /// smooth psi); the cap only bounds the work on flat, degenerate optima, whose
@@ -77,9 +136,8 @@ constexpr double kShapeInwardGradient = 1e-3;
 /// Largest turn of one rim Newton step, and halvings before the model step.
 constexpr double kShapeMaxRimStep = 1.5707963267948966;  // pi / 2
 constexpr int kShapeMaxRimHalvings = 8;
-/// Tikhonov term of the disk-constrained model step, relative to trace(H) (plus
-/// an absolute floor relative to the curvature scale 1): only pins the step along
-/// psi's flat directions.
+/// Tikhonov term of the disk-constrained model step, relative to trace(H) + 1
+/// (psi's curvatures are at most 1): only pins the step along flat directions.
 constexpr double kShapeModelRegularisation = 1e-10;
 /// Line search: regula falsi on psi' to this flatness/resolution, at most this
 /// many evaluations.
@@ -99,50 +157,61 @@ constexpr double kShapeStagnation = 4 * std::numeric_limits<double>::epsilon() *
 /// psi at the disk point s, with what the iteration needs.
 struct ShapeIterate {
   Vec2 s;
-  Vec3 q;        ///< proj_X(x), x = (s, 0).
-  double psi;    ///< |x - q|^2 / 2.
-  Vec2 gradient; ///< (x - q)_xy.
-  Mat3 hessian3; ///< X's psi Hessian at x, frame D.
-  Mat2 hessian;  ///< its top-left 2x2 block: psi's Hessian over the disk.
+  Vec3 x;                    ///< the disk point, frame S.
+  Vec3 q;                    ///< proj_X(x).
+  double psi;                ///< |x - q|^2 / 2.
+  Vec2 gradient;             ///< psi's gradient over the disk: (u.(x - q), v.(x - q)).
+  FactoredHessian hessian3;  ///< X's psi Hessian at x, frame S.
 };
 
 template <typename Target>
-ShapeIterate evaluateAt(const Target& target, const Vec2& s) {
-  const Vec3 x(s.x(), s.y(), 0.0);
+ShapeIterate evaluateAt(const Target& target, const DiskInShape& disk, const Vec2& s) {
+  const Vec3 x = disk.point(s);
   const Projection projection = target.project(x);
   const Vec3 residual = x - projection.q;
-  return ShapeIterate{s, projection.q, 0.5 * residual.squaredNorm(), residual.head<2>(),
-                      projection.hessian, projection.hessian.template topLeftCorner<2, 2>()};
+  return ShapeIterate{s, x, projection.q, 0.5 * residual.squaredNorm(), disk.inPlane(residual),
+                      projection.hessian};
+}
+
+/// psi's Hessian over the disk: [u v]^T H3 [u v].
+inline Mat2 planarHessian(const FactoredHessian& H, const DiskInShape& disk) {
+  Mat2 block = H.identity * Mat2::Identity();
+  for (int k = 0; k < H.count; ++k) {
+    const Vec2 d = disk.inPlane(H.direction[k]);
+    block += H.weight[k] * d * d.transpose();
+  }
+  return block;
 }
 
 /// The certificate g(w) = min_{y in X + B_rho} w.y - max_{k in disk} w.k
-///                      = w.support(-w) - rho|w| - r|w_xy|
+///                      = w.support(-w) - rho|w| - h_K(w)
 /// for any w (positively homogeneous: divided by |w| here), a lower bound of
 /// the distance (docs/disk_shape_distance.md, section 2).
 template <typename Target>
-double certificateAlong(const Target& target, double r, double rho, const Vec3& w) {
+double certificateAlong(const Target& target, const DiskInShape& disk, double rho, const Vec3& w) {
   const double length = w.norm();
   if (!(length > 0.0)) return 0.0;
-  const double lowest = w.dot(target.support(-w));
-  return (lowest - r * std::sqrt(w.x() * w.x() + w.y() * w.y())) / length - rho;
+  return (w.dot(target.support(-w)) - disk.support(w)) / length - rho;
 }
 
-/// The best of the certificate at the disk normals (where g has its kink for a
-/// disk, so face optima are certified there), along the separation q - x and,
-/// while the gap to `distance` is still above `gap_tolerance`, along
-/// H3 (q - x): X's psi Hessian at x keeps the components of q - x normal to
-/// the feature of X that q lies on (a face's normal, the plane normal to an
-/// edge) and drops the rest, which for small distances is rounding (q - x knows
-/// its direction only to about eps * scale / d).
+/// The best certificate at the iterate, tried in order while the gap to
+/// `distance` stays above `gap_tolerance`: along the separation q - x; along
+/// H3 (q - x), which keeps the components of q - x normal to the feature of X
+/// that q lies on (a face's normal, the plane normal to an edge) and drops the
+/// rest, which for small distances is rounding (q - x knows its direction only
+/// to about eps * scale / d); at the disk's normals +-n, where g has the disk's
+/// kink (face optima).
 template <typename Target>
-double certificateAt(const Target& target, double r, double rho, const Vec3& x, const Vec3& q,
-                     const Mat3& hessian3, double distance, double gap_tolerance) {
-  double best = std::max(certificateAlong(target, r, rho, Vec3::UnitZ()),
-                         certificateAlong(target, r, rho, -Vec3::UnitZ()));
-  const Vec3 separation = q - x;
-  best = std::max(best, certificateAlong(target, r, rho, separation));
+double certificateAt(const Target& target, const DiskInShape& disk, double rho,
+                     const ShapeIterate& at, double distance, double gap_tolerance) {
+  const Vec3 separation = at.q - at.x;
+  double best = certificateAlong(target, disk, rho, separation);
   if (distance - best > gap_tolerance) {
-    best = std::max(best, certificateAlong(target, r, rho, hessian3 * separation));
+    best = std::max(best, certificateAlong(target, disk, rho, at.hessian3.times(separation)));
+  }
+  if (distance - best > gap_tolerance) {
+    best = std::max({best, certificateAlong(target, disk, rho, disk.n),
+                     certificateAlong(target, disk, rho, -disk.n)});
   }
   return std::max(best, 0.0);
 }
@@ -151,9 +220,9 @@ double certificateAt(const Target& target, double r, double rho, const Vec3& x, 
 /// (Illinois) on psi', which is monotone (psi is convex along the line): finds
 /// the kinks of psi'' where the step crosses between regions of X's projection.
 template <typename Target>
-Vec2 shapeLineSearch(const Target& target, const ShapeIterate& at, const Vec2& step, double slope,
-                     ShapeIterate* at_end) {
-  ShapeIterate next = evaluateAt(target, at.s + step);
+Vec2 shapeLineSearch(const Target& target, const DiskInShape& disk, const ShapeIterate& at,
+                     const Vec2& step, double slope, ShapeIterate* at_end) {
+  ShapeIterate next = evaluateAt(target, disk, at.s + step);
   double derivative_hi = next.gradient.dot(step);
   double alpha = 1.0;
   if (derivative_hi > 0.0) {
@@ -163,7 +232,7 @@ Vec2 shapeLineSearch(const Target& target, const ShapeIterate& at, const Vec2& s
     for (int k = 0; k < kShapeLineSearchSteps; ++k) {
       alpha = (lo * derivative_hi - hi * derivative_lo) / (derivative_hi - derivative_lo);
       if (!(alpha > lo && alpha < hi)) alpha = 0.5 * (lo + hi);
-      next = evaluateAt(target, at.s + alpha * step);
+      next = evaluateAt(target, disk, at.s + alpha * step);
       const double derivative = next.gradient.dot(step);
       if (derivative > 0.0) {
         hi = alpha, derivative_hi = derivative;
@@ -196,14 +265,17 @@ Vec2 shapeLineSearch(const Target& target, const ShapeIterate& at, const Vec2& s
 /// step along a flat direction, away from the optimum.
 inline Vec2 modelStepOnDisk(const Mat2& H, const Vec2& g_raw, const Vec2& s, double r,
                             double gradient_rounding) {
-  Eigen::SelfAdjointEigenSolver<Mat2> eigen;
-  eigen.computeDirect(H);
-  Vec2 g = Vec2::Zero();
-  for (int i = 0; i < 2; ++i) {
-    const Vec2 v = eigen.eigenvectors().col(i);
-    const double component = v.dot(g_raw);
-    if (std::abs(component) > gradient_rounding) g += component * v;
-  }
+  // H's eigenvectors: v1 (larger eigenvalue) and v2 = v1 rotated, in closed form.
+  const double half_difference = 0.5 * (H(0, 0) - H(1, 1));
+  const double spread = std::sqrt(half_difference * half_difference + H(0, 1) * H(0, 1));
+  Vec2 v1 = half_difference >= 0.0 ? Vec2(half_difference + spread, H(0, 1))
+                                   : Vec2(H(0, 1), spread - half_difference);
+  const double v1_length = v1.norm();
+  v1 = v1_length > 0.0 ? Vec2(v1 / v1_length) : Vec2(1.0, 0.0);
+  const Vec2 v2(-v1.y(), v1.x());
+  const double g1 = v1.dot(g_raw), g2 = v2.dot(g_raw);
+  const Vec2 g = (std::abs(g1) > gradient_rounding ? g1 : 0.0) * v1 +
+                 (std::abs(g2) > gradient_rounding ? g2 : 0.0) * v2;
   if (g.squaredNorm() == 0.0) return Vec2::Zero();
   const double tau = kShapeModelRegularisation * (H.trace() + 1.0);
   auto step_for = [&](double mu) -> Vec2 {
@@ -256,58 +328,48 @@ inline Vec2 cayleyTurn(double dtheta) {
   return Vec2((1.0 - h * h) * inverse, 2.0 * h * inverse);
 }
 
-/// The point of the disk nearest y (frame D): y's foot on the plane, clamped to the rim.
-inline Vec2 nearestOnDisk(const Vec3& y, double r) {
-  const Vec2 foot = y.head<2>();
-  const double length = foot.norm();
-  return length > r ? Vec2(foot.x() * (r / length), foot.y() * (r / length)) : foot;
-}
-
 /// Minimises psi(s) = dist(x(s), X)^2 / 2 over the disk |s| <= r by the feasible
 /// Newton iteration of docs/disk_shape_distance.md section 3 and certifies the
 /// answer; the result is for X inflated by rho (>= 0). `scale` sets every
 /// tolerance. Every iterate is a feasible pair, so `distance` is always an upper
 /// bound and `lower_bound` a lower bound of the true distance.
 template <typename Target>
-DiskShapeSolution solveDiskShape(const Target& target, double r, double rho, double scale,
-                                 SolverGoal goal) {
+DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, double rho,
+                                 double scale, SolverGoal goal) {
+  const double r = disk.r;
   const double gap_tolerance = kShapeGapTolerance * scale;
   const double touching = kShapeTouchingTolerance * scale;
   // Start: the disk point nearest proj_X(disk centre) (one alternating projection).
-  ShapeIterate at = evaluateAt(target, nearestOnDisk(target.project(Vec3::Zero()).q, r));
+  ShapeIterate at = evaluateAt(target, disk, disk.nearest(target.project(disk.c).q));
   DiskShapeSolution solution;
 
-  // The answer at the current iterate, with its certificate `lower` (core units).
+  // The answer at the current iterate, with its certificate `lower` (for X + B_rho).
   auto finish = [&](int iteration, double lower) {
-    const Vec3 x(at.s.x(), at.s.y(), 0.0);
     const double core_distance = std::sqrt(2.0 * at.psi);
     solution.iterations = iteration;
-    solution.p = x;
+    solution.p = at.x;
     if (core_distance <= rho) {  // x lies in X + B_rho: a common point
-      solution.q = x;
-      solution.distance = 0.0;
-      solution.lower_bound = 0.0;
+      solution.q = at.x;
       solution.intersecting = true;
       return solution;
     }
     // The point of X + B_rho nearest x: from q towards x by rho.
-    solution.q = at.q + (rho / core_distance) * (x - at.q);
+    solution.q = at.q + (rho / core_distance) * (at.x - at.q);
     solution.distance = core_distance - rho;
     solution.lower_bound = std::min(lower, solution.distance);
-    solution.intersecting = false;
     return solution;
+  };
+  auto certify = [&]() {
+    return certificateAt(target, disk, rho, at, std::sqrt(2.0 * at.psi) - rho, gap_tolerance);
   };
 
   for (int iteration = 1; iteration <= kMaxShapeIterations; ++iteration) {
-    const Vec3 x(at.s.x(), at.s.y(), 0.0);
     const double core_distance = std::sqrt(2.0 * at.psi);
     if (core_distance <= rho) return finish(iteration, 0.0);
     const double distance = core_distance - rho;
-    const double lower =
-        certificateAt(target, r, rho, x, at.q, at.hessian3, distance, gap_tolerance);
+    const double lower = certify();
     if (goal == SolverGoal::intersection) {
-      if (distance <= touching) return finish(iteration, lower);
-      if (lower > touching) return finish(iteration, lower);
+      if (distance <= touching || lower > touching) return finish(iteration, lower);
     }
     if (distance - lower <= gap_tolerance) return finish(iteration, lower);
 
@@ -328,39 +390,32 @@ DiskShapeSolution solveDiskShape(const Target& target, double r, double rho, dou
       if (on_rim) {
         // psi(theta)' = r sigma, psi'' = r kappa (lengths): dtheta = -sigma / kappa.
         const double sigma = at.gradient.dot(tangent);
-        const double kappa = r * tangent.dot(at.hessian * tangent) + std::max(outward, 0.0);
+        const Vec3 tangent3 = tangent.x() * disk.u + tangent.y() * disk.v;
+        const double kappa = r * at.hessian3.quadratic(tangent3) + std::max(outward, 0.0);
         double dtheta = kappa > 0.0 ? -sigma / kappa : -std::copysign(kShapeMaxRimStep, sigma);
         dtheta = std::clamp(dtheta, -kShapeMaxRimStep, kShapeMaxRimStep);
         for (int halving = 0; halving < kShapeMaxRimHalvings && !moved; ++halving) {
           const Vec2 rotation = cayleyTurn(dtheta);
-          const Vec2 s_next = r * (rotation.x() * radial + rotation.y() * tangent);
-          next = evaluateAt(target, s_next);
+          next = evaluateAt(target, disk, r * (rotation.x() * radial + rotation.y() * tangent));
           moved = next.psi < at.psi;
           dtheta *= 0.5;
         }
       }
     }
     if (!moved) {
-      const Vec2 step =
-          modelStepOnDisk(at.hessian, at.gradient, s, r, kShapeGradientRounding * scale);
+      const Vec2 step = modelStepOnDisk(planarHessian(at.hessian3, disk), at.gradient, s, r,
+                                        kShapeGradientRounding * scale);
       const double slope = at.gradient.dot(step);
       if (!(slope < 0.0)) return finish(iteration, lower);  // stationary to rounding
-      shapeLineSearch(target, at, step, slope, &next);
+      shapeLineSearch(target, disk, at, step, slope, &next);
       moved = next.psi < at.psi;
     }
     if (!moved) return finish(iteration, lower);  // no representable decrease
     const double decrease = at.psi - next.psi;
     at = next;
-    if (decrease <= kShapeStagnation * scale * scale) {
-      const Vec3 x_next(at.s.x(), at.s.y(), 0.0);
-      return finish(iteration, certificateAt(target, r, rho, x_next, at.q, at.hessian3,
-                                             std::sqrt(2.0 * at.psi) - rho, gap_tolerance));
-    }
+    if (decrease <= kShapeStagnation * scale * scale) return finish(iteration, certify());
   }
-  const Vec3 x_last(at.s.x(), at.s.y(), 0.0);
-  return finish(kMaxShapeIterations,
-                certificateAt(target, r, rho, x_last, at.q, at.hessian3,
-                              std::sqrt(2.0 * at.psi) - rho, gap_tolerance));
+  return finish(kMaxShapeIterations, certify());
 }
 
 }  // namespace internal

@@ -6,28 +6,25 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The solid box {|y_i| <= half_i} posed in the disk's frame.
+/// The solid box {|y_i| <= half_i}, in its frame.
 struct BoxTarget {
-  PoseInDisk pose;
   Vec3 half;
 
-  Projection project(const Vec3& x) const {
-    const Vec3 y = pose.toShape(x);
-    Vec3 q_S;
-    Vec3 outside;  // psi's Hessian in the box frame: 1 along each clamped axis
+  Projection project(const Vec3& y) const {
+    Vec3 q;
+    // psi's Hessian: e_i e_i^T for each clamped axis.
+    FactoredHessian hessian;
     for (int i = 0; i < 3; ++i) {
-      q_S[i] = std::clamp(y[i], -half[i], half[i]);
-      outside[i] = q_S[i] != y[i] ? 1.0 : 0.0;
+      q[i] = std::clamp(y[i], -half[i], half[i]);
+      if (q[i] != y[i]) hessian.add(1.0, Vec3::Unit(i));
     }
-    return Projection{pose.fromShape(q_S), pose.hessianFromShape(outside.asDiagonal())};
+    return Projection{q, hessian};
   }
 
   Vec3 support(const Vec3& w) const {
-    const Vec3 w_S = pose.directionToShape(w);
-    // Ties (w_S perpendicular to an axis) take the + side.
-    return pose.fromShape(Vec3(w_S.x() < 0.0 ? -half.x() : half.x(),
-                               w_S.y() < 0.0 ? -half.y() : half.y(),
-                               w_S.z() < 0.0 ? -half.z() : half.z()));
+    // Ties (w perpendicular to an axis) take the + side.
+    return Vec3(w.x() < 0.0 ? -half.x() : half.x(), w.y() < 0.0 ? -half.y() : half.y(),
+                w.z() < 0.0 ? -half.z() : half.z());
   }
 };
 
@@ -40,12 +37,12 @@ struct BoxTraits {
     return 0.5 * box.side.template cast<double>().norm();
   }
   static double inflation(const fcl::Box<S>&) { return 0.0; }
-  static BoxTarget target(const fcl::Box<S>& box, const PoseInDisk& pose) {
-    return BoxTarget{pose, 0.5 * box.side.template cast<double>()};
+  static BoxTarget target(const fcl::Box<S>& box) {
+    return BoxTarget{0.5 * box.side.template cast<double>()};
   }
   /// The face normals.
-  static std::array<Vec3, 3> contactDirections(const BoxTarget& box) {
-    return {box.pose.R.col(0), box.pose.R.col(1), box.pose.R.col(2)};
+  static std::array<Vec3, 3> contactDirections(const BoxTarget&) {
+    return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   }
 };
 

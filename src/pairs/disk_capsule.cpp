@@ -7,24 +7,20 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The segment {(0, 0, z) : |z| <= half_length} of the capsule frame, posed in D.
+/// The segment {(0, 0, z) : |z| <= half_length} of the capsule frame.
 struct SegmentTarget {
-  PoseInDisk pose;
   double half_length;
 
-  Projection project(const Vec3& x) const {
-    const Vec3 axis = pose.R.col(2);
-    const double along = axis.dot(x - pose.c);
-    const double clamped = std::clamp(along, -half_length, half_length);
-    // Inside the segment's span psi's Hessian is I - a a^T, beyond an end I.
-    Mat3 hessian = Mat3::Identity();
-    if (clamped == along) hessian -= axis * axis.transpose();
-    return Projection{pose.c + clamped * axis, hessian};
+  Projection project(const Vec3& y) const {
+    const double z = std::clamp(y.z(), -half_length, half_length);
+    // Inside the segment's span psi's Hessian is I - z z^T, beyond an end I.
+    FactoredHessian hessian = FactoredHessian::scaledIdentity(1.0);
+    if (z == y.z()) hessian.add(-1.0, Vec3::UnitZ());
+    return Projection{Vec3(0.0, 0.0, z), hessian};
   }
 
-  Vec3 support(const Vec3& w) const {
-    const Vec3 axis = pose.R.col(2);
-    return pose.c + (axis.dot(w) < 0.0 ? -half_length : half_length) * axis;
+  Vec3 support(const Vec3& w) const {  // ties take the + end
+    return Vec3(0.0, 0.0, w.z() < 0.0 ? -half_length : half_length);
   }
 };
 
@@ -37,12 +33,12 @@ struct CapsuleTraits {
     return 0.5 * double(capsule.lz) + double(capsule.radius);
   }
   static double inflation(const fcl::Capsule<S>& capsule) { return double(capsule.radius); }
-  static SegmentTarget target(const fcl::Capsule<S>& capsule, const PoseInDisk& pose) {
-    return SegmentTarget{pose, 0.5 * double(capsule.lz)};
+  static SegmentTarget target(const fcl::Capsule<S>& capsule) {
+    return SegmentTarget{0.5 * double(capsule.lz)};
   }
   /// The axis and the capsule frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const SegmentTarget& segment) {
-    return {segment.pose.R.col(2), segment.pose.R.col(0), segment.pose.R.col(1)};
+  static std::array<Vec3, 3> contactDirections(const SegmentTarget&) {
+    return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
   }
 };
 

@@ -20,7 +20,6 @@ constexpr double kParallelFaceSine = 1e-12;
 /// counter-clockwise seen from outside. Projection works in the shape frame.
 template <typename S>
 struct ConvexTarget {
-  PoseInDisk pose;
   const fcl::Convex<S>* convex;
 
   Vec3 vertex(int index) const { return convex->getVertices()[index].template cast<double>(); }
@@ -41,9 +40,8 @@ struct ConvexTarget {
     }
   }
 
-  Projection project(const Vec3& x) const {
-    const Vec3 y = pose.toShape(x);
-    Projection best{y, Mat3::Zero()};
+  Projection project(const Vec3& y) const {
+    Projection best{y, FactoredHessian()};
     double best_squared = std::numeric_limits<double>::infinity();
     bool outside = false;
     Vec3 first_normal = Vec3::Zero(), largest_normal = Vec3::Zero();
@@ -72,13 +70,12 @@ struct ConvexTarget {
       best = projectOntoPolygon(y, largest_count, [&](int i) { return vertex(largest_face[i]); },
                                 largest_normal);
     } else if (!outside) {
-      return Projection{x, Mat3::Zero()};
+      return Projection{y, FactoredHessian()};
     }
-    return Projection{pose.fromShape(best.q), pose.hessianFromShape(best.hessian)};
+    return best;
   }
 
-  Vec3 support(const Vec3& w) const {
-    const Vec3 w_S = pose.directionToShape(w);
+  Vec3 support(const Vec3& w_S) const {
     const auto& vertices = convex->getVertices();
     std::size_t best = 0;  // ties take the first vertex
     for (std::size_t i = 1; i < vertices.size(); ++i) {
@@ -87,7 +84,7 @@ struct ConvexTarget {
         best = i;
       }
     }
-    return pose.fromShape(vertices[best].template cast<double>());
+    return vertices[best].template cast<double>();
   }
 };
 
@@ -122,14 +119,12 @@ struct ConvexTraits {
     return std::sqrt(largest);
   }
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
-  static ConvexTarget<S> target(const fcl::Convex<S>& convex, const PoseInDisk& pose) {
-    return ConvexTarget<S>{pose, &convex};
-  }
+  static ConvexTarget<S> target(const fcl::Convex<S>& convex) { return ConvexTarget<S>{&convex}; }
   /// The face normals.
   static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target) {
     std::vector<Vec3> normals;
     target.forEachFace([&](int, const int*, const Vec3& normal) {
-      normals.push_back(target.pose.directionFromShape(normal));
+      normals.push_back(normal);
     });
     return normals;
   }

@@ -7,39 +7,35 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The solid cylinder {x^2 + y^2 <= radius^2, |z| <= half_length}, posed in D.
+/// The solid cylinder {x^2 + y^2 <= radius^2, |z| <= half_length}, in its frame.
 struct CylinderTarget {
-  PoseInDisk pose;
   double radius;
   double half_length;
 
-  Projection project(const Vec3& x) const {
-    const Vec3 y = pose.toShape(x);
+  Projection project(const Vec3& y) const {
     const double z = std::clamp(y.z(), -half_length, half_length);
     const double rho = std::sqrt(y.x() * y.x() + y.y() * y.y());
-    // psi's Hessian in the cylinder frame: 1 along z beyond an end cap; in the
-    // plane, 0 inside the radius, else that of a circle's disk, I - (radius /
-    // rho) t t^T with t the tangent.
-    Mat3 hessian = Mat3::Zero();
-    if (z != y.z()) hessian(2, 2) = 1.0;
+    // psi's Hessian in the cylinder frame: z z^T beyond an end cap; in the
+    // plane, 0 inside the radius, else that of a circle's disk,
+    // e e^T + (1 - radius / rho) t t^T (e radial, t tangent).
+    FactoredHessian hessian;
+    if (z != y.z()) hessian.add(1.0, Vec3::UnitZ());
     Vec3 q_S(y.x(), y.y(), z);
     if (rho > radius) {
       const double shrink = radius / rho;
       q_S.x() *= shrink, q_S.y() *= shrink;
-      const Eigen::Vector2d t(-y.y() / rho, y.x() / rho);
-      hessian.topLeftCorner<2, 2>() =
-          Eigen::Matrix2d::Identity() - shrink * t * t.transpose();
+      const Vec3 e(y.x() / rho, y.y() / rho, 0.0);
+      hessian.add(1.0, e).add(1.0 - shrink, Vec3(-e.y(), e.x(), 0.0));
     }
-    return Projection{pose.fromShape(q_S), pose.hessianFromShape(hessian)};
+    return Projection{q_S, hessian};
   }
 
-  Vec3 support(const Vec3& w) const {
-    const Vec3 w_S = pose.directionToShape(w);
+  Vec3 support(const Vec3& w_S) const {
     const double planar = std::sqrt(w_S.x() * w_S.x() + w_S.y() * w_S.y());
     // Ties: w along the axis takes the rim point on +x; w in the plane the + cap.
     const Vec3 rim = planar > 0.0 ? Vec3(radius * w_S.x() / planar, radius * w_S.y() / planar, 0.0)
                                   : Vec3(radius, 0.0, 0.0);
-    return pose.fromShape(rim + Vec3(0.0, 0.0, w_S.z() < 0.0 ? -half_length : half_length));
+    return rim + Vec3(0.0, 0.0, w_S.z() < 0.0 ? -half_length : half_length);
   }
 };
 
@@ -52,12 +48,12 @@ struct CylinderTraits {
     return std::hypot(double(cylinder.radius), 0.5 * double(cylinder.lz));
   }
   static double inflation(const fcl::Cylinder<S>&) { return 0.0; }
-  static CylinderTarget target(const fcl::Cylinder<S>& cylinder, const PoseInDisk& pose) {
-    return CylinderTarget{pose, double(cylinder.radius), 0.5 * double(cylinder.lz)};
+  static CylinderTarget target(const fcl::Cylinder<S>& cylinder) {
+    return CylinderTarget{double(cylinder.radius), 0.5 * double(cylinder.lz)};
   }
   /// The axis and the frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const CylinderTarget& cylinder) {
-    return {cylinder.pose.R.col(2), cylinder.pose.R.col(0), cylinder.pose.R.col(1)};
+  static std::array<Vec3, 3> contactDirections(const CylinderTarget&) {
+    return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
   }
 };
 

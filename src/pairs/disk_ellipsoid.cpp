@@ -13,14 +13,12 @@ namespace {
 constexpr double kSecularRootTolerance = 4 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxSecularSteps = 100;
 
-/// The solid ellipsoid {sum (y_i / e_i)^2 <= 1} posed in D. Semi-axes may be 0
-/// (a flat ellipse, a segment, a point).
+/// The solid ellipsoid {sum (y_i / e_i)^2 <= 1}, in its frame. Semi-axes may be
+/// 0 (a flat ellipse, a segment, a point).
 struct EllipsoidTarget {
-  PoseInDisk pose;
   Vec3 e;
 
-  Projection project(const Vec3& x) const {
-    const Vec3 y = pose.toShape(x);
+  Projection project(const Vec3& y) const {
     // Inside (on a zero axis, only y_i == 0 is inside).
     double level = 0.0;
     bool off_flat_axis = false;
@@ -28,7 +26,7 @@ struct EllipsoidTarget {
       if (e[i] > 0.0) level += (y[i] / e[i]) * (y[i] / e[i]);
       else off_flat_axis |= y[i] != 0.0;
     }
-    if (level <= 1.0 && !off_flat_axis) return Projection{x, Mat3::Zero()};
+    if (level <= 1.0 && !off_flat_axis) return Projection{y, FactoredHessian()};
     // q_i = e_i^2 y_i / (t + e_i^2) with t > 0 the root of
     // F(t) = sum (e_i y_i / (t + e_i^2))^2 - 1 (convex and decreasing).
     const Vec3 e2 = e.cwiseProduct(e);
@@ -74,20 +72,21 @@ struct EllipsoidTarget {
       m_diagonal[i] = flat ? 0.0 : e2[i] / denominator;
       v[i] = m_diagonal[i] * a[i];
     }
-    // D proj = M - v v^T / (a.v) (implicit differentiation of q^T A q = 1).
-    Mat3 Dq = m_diagonal.asDiagonal();
+    // D proj = M - v v^T / (a.v) (implicit differentiation of q^T A q = 1), so
+    // psi's Hessian is sum_i (1 - m_i) e_i e_i^T + v v^T / (a.v).
+    FactoredHessian hessian;
+    for (int i = 0; i < 3; ++i) hessian.add(1.0 - m_diagonal[i], Vec3::Unit(i));
     const double av = a.dot(v);
-    if (av > 0.0) Dq -= v * v.transpose() / av;
-    return Projection{pose.fromShape(q_S), pose.hessianFromShape(Mat3::Identity() - Dq)};
+    if (av > 0.0) hessian.add(1.0 / av, v);
+    return Projection{q_S, hessian};
   }
 
   Vec3 support(const Vec3& w) const {
     // argmax of w.y: A^-1 w / sqrt(w^T A^-1 w), A^-1 = diag(e_i^2).
-    const Vec3 w_S = pose.directionToShape(w);
-    const Vec3 scaled = e.cwiseProduct(w_S);
+    const Vec3 scaled = e.cwiseProduct(w);
     const double length = scaled.norm();
-    if (!(length > 0.0)) return pose.c;  // w along only zero axes: every point ties
-    return pose.fromShape(e.cwiseProduct(scaled) / length);
+    if (!(length > 0.0)) return Vec3::Zero();  // w along only zero axes: every point ties
+    return e.cwiseProduct(scaled) / length;
   }
 };
 
@@ -101,12 +100,12 @@ struct EllipsoidTraits {
     return double(ellipsoid.radii.maxCoeff());
   }
   static double inflation(const fcl::Ellipsoid<S>&) { return 0.0; }
-  static EllipsoidTarget target(const fcl::Ellipsoid<S>& ellipsoid, const PoseInDisk& pose) {
-    return EllipsoidTarget{pose, ellipsoid.radii.template cast<double>()};
+  static EllipsoidTarget target(const fcl::Ellipsoid<S>& ellipsoid) {
+    return EllipsoidTarget{ellipsoid.radii.template cast<double>()};
   }
   /// The principal axes.
-  static std::array<Vec3, 3> contactDirections(const EllipsoidTarget& ellipsoid) {
-    return {ellipsoid.pose.R.col(0), ellipsoid.pose.R.col(1), ellipsoid.pose.R.col(2)};
+  static std::array<Vec3, 3> contactDirections(const EllipsoidTarget&) {
+    return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   }
 };
 

@@ -1,6 +1,6 @@
-// Disk - fcl::Halfspace {x : n.x <= d} and fcl::Plane {x : n.x = d}, closed
-// form: the disk's heights over the boundary plane span h0 +- r |n_xy| (h0 the
-// centre's height, n_xy the plane normal's component in the disk's plane).
+// Disk - fcl::Halfspace {y : n.y <= d} and fcl::Plane {y : n.y = d}, closed
+// form: the disk's heights over the boundary plane span h0 +- r |P n| (h0 the
+// centre's height, P n the plane normal's component in the disk's plane).
 // docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 
@@ -8,53 +8,55 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The boundary plane in D: unit normal n and the disk centre's height h0 over it.
-struct BoundaryInDisk {
+/// The boundary plane seen from the disk (shape frame): unit normal n, the disk
+/// centre's height h0 over the plane, and P n.
+struct BoundaryOfDisk {
   Vec3 n;
   double h0;
-  double in_plane;  ///< |n_xy|: the disk's half-span of heights is r * in_plane.
+  Vec3 in_plane_normal;  ///< P n = (u.n) u + (v.n) v.
+  double in_plane;       ///< |P n|: the disk's half-span of heights is r * in_plane.
 
-  /// The disk point nearest along -n (lowest): -r n_xy / |n_xy|, or the centre
-  /// when the disk is parallel to the plane (every point ties).
-  Vec3 lowestPoint(double r) const {
-    if (!(in_plane > 0.0)) return Vec3::Zero();
-    return Vec3(-r * n.x() / in_plane, -r * n.y() / in_plane, 0.0);
+  /// The disk point lowest along n: c - r P n / |P n|, or the centre when the
+  /// disk is parallel to the plane (every point ties).
+  Vec3 lowestPoint(const DiskInShape& disk) const {
+    if (!(in_plane > 0.0)) return disk.c;
+    return disk.c - (disk.r / in_plane) * in_plane_normal;
   }
 };
 
-/// n, d of the shape, in its frame; valid if finite, n non-zero.
+/// n, d of the shape; valid if finite, n non-zero.
 template <typename S>
 bool isValidBoundary(const fcl::Vector3<S>& n, S d) {
   return n.allFinite() && n.squaredNorm() > S(0) && std::abs(d) <= kMaxDiskLength<S>;
 }
 
 template <typename S>
-BoundaryInDisk boundaryInDisk(const fcl::Vector3<S>& n_S, S d, const fcl::Transform3<S>& X_WD,
-                              const fcl::Transform3<S>& X_WS) {
-  const PoseInDisk pose = PoseInDisk::of(X_WD, X_WS);
-  const Vec3 n_local = n_S.template cast<double>();
-  const double length = n_local.norm();
-  const Vec3 n = pose.R * (n_local / length);
-  // Boundary in D: {n.x = d / |n| + n.c}; the centre (origin) has height -that.
-  const double h0 = -(double(d) / length + n.dot(pose.c));
-  return BoundaryInDisk{n, h0, std::sqrt(n.x() * n.x() + n.y() * n.y())};
+BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d, const DiskInShape& disk) {
+  const Vec3 n_raw = n_S.template cast<double>();
+  const double length = n_raw.norm();
+  const Vec3 n = n_raw / length;
+  const Vec2 planar = disk.inPlane(n);
+  return BoundaryOfDisk{n, n.dot(disk.c) - double(d) / length,
+                        planar.x() * disk.u + planar.y() * disk.v, planar.norm()};
 }
 
 /// scale = r + |h0| (the shape's "origin" is the foot of the disk centre).
-double boundaryScale(double r, const BoundaryInDisk& boundary) {
-  return r + std::abs(boundary.h0);
+double boundaryScale(const DiskInShape& disk, const BoundaryOfDisk& boundary) {
+  return disk.r + std::abs(boundary.h0);
 }
 
+/// The result for points p, q (shape frame) at `distance`, which the closed
+/// form proves: the certificate at w = -+n equals it.
 template <typename S>
-DiskShapeDistanceResult<S> fromDisk(const fcl::Transform3<S>& X_WD, const Vec3& p, const Vec3& q,
-                                    double distance) {
+DiskShapeDistanceResult<S> closedForm(const fcl::Transform3<S>& X_WS, const Vec3& p, const Vec3& q,
+                                      double distance) {
   DiskShapeSolution solution;
   solution.p = p;
   solution.q = q;
   solution.distance = distance;
-  solution.lower_bound = distance;  // the certificate at w = -n or +n is the closed form itself
+  solution.lower_bound = distance;
   solution.intersecting = distance == 0.0;
-  return toWorld(X_WD, solution);
+  return toWorld(X_WS, solution);
 }
 
 }  // namespace
@@ -67,16 +69,16 @@ struct DiskShapePair<fcl::Halfspace<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(halfspace.n, halfspace.d)) {
       return nanDiskShapeResult<S>();
     }
-    const BoundaryInDisk boundary = boundaryInDisk(halfspace.n, halfspace.d, X_WD, X_WS);
-    const double r = double(radius);
-    // The lowest disk point p is at height h0 - r |n_xy|: apart iff that is > 0.
-    const Vec3 p = boundary.lowestPoint(r);
-    const double height = boundary.h0 - r * boundary.in_plane;
-    if (height <= 0.0) return fromDisk<S>(X_WD, p, p, 0.0);  // p lies in the halfspace
-    return fromDisk<S>(X_WD, p, p - height * boundary.n, height);
+    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const BoundaryOfDisk boundary = boundaryOfDisk(halfspace.n, halfspace.d, disk);
+    // The lowest disk point p is at height h0 - r |P n|: apart iff that is > 0.
+    const Vec3 p = boundary.lowestPoint(disk);
+    const double height = boundary.h0 - disk.r * boundary.in_plane;
+    if (height <= 0.0) return closedForm<S>(X_WS, p, p, 0.0);  // p lies in the halfspace
+    return closedForm<S>(X_WS, p, p - height * boundary.n, height);
   }
 
-  /// Contact: pos the lowest disk point; normal -n, depth r |n_xy| - h0: moving
+  /// Contact: pos the lowest disk point; normal -n, depth r |P n| - h0: moving
   /// the halfspace by that along -n separates it, and no shorter move does
   /// (the exact penetration depth).
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD,
@@ -85,15 +87,14 @@ struct DiskShapePair<fcl::Halfspace<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(halfspace.n, halfspace.d)) {
       return false;
     }
-    const BoundaryInDisk boundary = boundaryInDisk(halfspace.n, halfspace.d, X_WD, X_WS);
-    const double r = double(radius);
-    const double height = boundary.h0 - r * boundary.in_plane;
-    if (height > kShapeTouchingTolerance * boundaryScale(r, boundary)) return false;
+    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const BoundaryOfDisk boundary = boundaryOfDisk(halfspace.n, halfspace.d, disk);
+    const double height = boundary.h0 - disk.r * boundary.in_plane;
+    if (height > kShapeTouchingTolerance * boundaryScale(disk, boundary)) return false;
     if (contact) {
-      const Mat3 R_WD = X_WD.linear().template cast<double>();
-      contact->pos = (X_WD.translation().template cast<double>() + R_WD * boundary.lowestPoint(r))
-                         .template cast<S>();
-      contact->normal = (-(R_WD * boundary.n)).template cast<S>();
+      const Mat3 R_WS = X_WS.linear().template cast<double>();
+      contact->pos = toWorldPoint(X_WS, boundary.lowestPoint(disk)).template cast<S>();
+      contact->normal = (-(R_WS * boundary.n)).template cast<S>();
       contact->penetration_depth = S(std::max(-height, 0.0));
     }
     return true;
@@ -103,20 +104,25 @@ struct DiskShapePair<fcl::Halfspace<S>> {
 template <typename S>
 struct DiskShapePair<fcl::Plane<S>> {
   /// The nearest pair, or a common point: the point of the disk on the plane
-  /// nearest its centre (on the chord's foot), the centre itself when parallel.
-  static void solve(double r, const BoundaryInDisk& boundary, Vec3* p, Vec3* q, double* distance) {
-    const double clearance = std::abs(boundary.h0) - r * boundary.in_plane;
+  /// nearest its centre (the foot of the chord), the centre itself when parallel.
+  static void solve(const DiskInShape& disk, const BoundaryOfDisk& boundary, Vec3* p, Vec3* q,
+                    double* distance) {
+    const double clearance = std::abs(boundary.h0) - disk.r * boundary.in_plane;
     if (clearance <= 0.0) {
-      const double foot = boundary.in_plane > 0.0 ? boundary.h0 / (boundary.in_plane * boundary.in_plane) : 0.0;
-      *p = *q = Vec3(-foot * boundary.n.x(), -foot * boundary.n.y(), 0.0);
+      const double foot =
+          boundary.in_plane > 0.0 ? boundary.h0 / (boundary.in_plane * boundary.in_plane) : 0.0;
+      *p = *q = disk.c - foot * boundary.in_plane_normal;
       *distance = 0.0;
       return;
     }
     // The rim point towards the plane, and its foot on the plane.
-    const Vec3 lowest = boundary.lowestPoint(r);
-    *p = boundary.h0 > 0.0 ? lowest : Vec3(-lowest);
     const double side = boundary.h0 > 0.0 ? 1.0 : -1.0;
-    *q = *p - side * clearance * boundary.n;
+    const Vec3 towards = boundary.in_plane > 0.0
+                             ? Vec3(disk.c - side * (disk.r / boundary.in_plane) *
+                                                 boundary.in_plane_normal)
+                             : disk.c;
+    *p = towards;
+    *q = towards - side * clearance * boundary.n;
     *distance = clearance;
   }
 
@@ -126,10 +132,11 @@ struct DiskShapePair<fcl::Plane<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(plane.n, plane.d)) {
       return nanDiskShapeResult<S>();
     }
+    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
     Vec3 p, q;
     double distance;
-    solve(double(radius), boundaryInDisk(plane.n, plane.d, X_WD, X_WS), &p, &q, &distance);
-    return fromDisk<S>(X_WD, p, q, distance);
+    solve(disk, boundaryOfDisk(plane.n, plane.d, disk), &p, &q, &distance);
+    return closedForm<S>(X_WS, p, q, distance);
   }
 
   /// Contact: pos the common point; the plane moved along +n past the disk's
@@ -139,19 +146,19 @@ struct DiskShapePair<fcl::Plane<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(plane.n, plane.d)) {
       return false;
     }
-    const BoundaryInDisk boundary = boundaryInDisk(plane.n, plane.d, X_WD, X_WS);
-    const double r = double(radius);
+    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const BoundaryOfDisk boundary = boundaryOfDisk(plane.n, plane.d, disk);
     Vec3 p, q;
     double distance;
-    solve(r, boundary, &p, &q, &distance);
-    if (distance > kShapeTouchingTolerance * boundaryScale(r, boundary)) return false;
+    solve(disk, boundary, &p, &q, &distance);
+    if (distance > kShapeTouchingTolerance * boundaryScale(disk, boundary)) return false;
     if (contact) {
-      const Mat3 R_WD = X_WD.linear().template cast<double>();
-      const double above = boundary.h0 + r * boundary.in_plane;   // move by this along +n
-      const double below = r * boundary.in_plane - boundary.h0;   // or this along -n
+      const Mat3 R_WS = X_WS.linear().template cast<double>();
+      const double above = boundary.h0 + disk.r * boundary.in_plane;  // move by this along +n
+      const double below = disk.r * boundary.in_plane - boundary.h0;  // or this along -n
       const bool up = above <= below;
-      contact->pos = (X_WD.translation().template cast<double>() + R_WD * p).template cast<S>();
-      contact->normal = ((up ? 1.0 : -1.0) * (R_WD * boundary.n)).template cast<S>();
+      contact->pos = toWorldPoint(X_WS, p).template cast<S>();
+      contact->normal = ((up ? 1.0 : -1.0) * (R_WS * boundary.n)).template cast<S>();
       contact->penetration_depth = S(std::max(up ? above : below, 0.0));
     }
     return true;

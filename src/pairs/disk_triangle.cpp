@@ -8,7 +8,7 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The closed flat triangle, vertices in D (a zero-area triangle is the union of
+/// The closed flat triangle, in its frame (a zero-area triangle is the union of
 /// its edges).
 struct TriangleTarget {
   std::array<Vec3, 3> vertices;
@@ -42,10 +42,9 @@ struct TriangleTraits {
                                triangle.c.template cast<double>().squaredNorm()}));
   }
   static double inflation(const fcl::TriangleP<S>&) { return 0.0; }
-  static TriangleTarget target(const fcl::TriangleP<S>& triangle, const PoseInDisk& pose) {
-    TriangleTarget target{{pose.fromShape(triangle.a.template cast<double>()),
-                           pose.fromShape(triangle.b.template cast<double>()),
-                           pose.fromShape(triangle.c.template cast<double>())},
+  static TriangleTarget target(const fcl::TriangleP<S>& triangle) {
+    TriangleTarget target{{triangle.a.template cast<double>(), triangle.b.template cast<double>(),
+                           triangle.c.template cast<double>()},
                           Vec3::Zero()};
     target.normal =
         (target.vertices[1] - target.vertices[0]).cross(target.vertices[2] - target.vertices[0]);

@@ -14,9 +14,10 @@ inline Projection projectOntoSegment(const Vec3& x, const Vec3& a, const Vec3& b
   const double length_squared = edge.squaredNorm();
   const double t = length_squared > 0.0 ? edge.dot(x - a) / length_squared : 0.0;
   if (t > 0.0 && t < 1.0) {
-    return Projection{a + t * edge, Mat3::Identity() - edge * edge.transpose() / length_squared};
+    return Projection{a + t * edge,
+                      FactoredHessian::scaledIdentity(1.0).add(-1.0 / length_squared, edge)};
   }
-  return Projection{t <= 0.0 ? a : b, Mat3::Identity()};
+  return Projection{t <= 0.0 ? a : b, FactoredHessian::scaledIdentity(1.0)};
 }
 
 /// Nearest point of the closed convex polygon with vertices `vertex(0..count-1)`
@@ -34,10 +35,10 @@ Projection projectOntoPolygon(const Vec3& x, int count, VertexAt vertex, const V
     }
     if (inside) {
       const Vec3 on_plane = x - (normal.dot(x - vertex(0)) / normal_squared) * normal;
-      return Projection{on_plane, normal * normal.transpose() / normal_squared};
+      return Projection{on_plane, FactoredHessian().add(1.0 / normal_squared, normal)};
     }
   }
-  Projection best{vertex(0), Mat3::Identity()};
+  Projection best{vertex(0), FactoredHessian::scaledIdentity(1.0)};
   double best_squared = (x - best.q).squaredNorm();
   for (int i = 0; i < count; ++i) {
     const Projection on_edge = projectOntoSegment(x, vertex(i), vertex((i + 1) % count));
