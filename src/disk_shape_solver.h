@@ -40,8 +40,10 @@ struct FactoredHessian {
   static constexpr int kMaxTerms = 4;
   double identity{0};
   int count{0};
-  std::array<double, kMaxTerms> weight{};
-  std::array<Vec3, kMaxTerms> direction{};
+  // Only the first `count` entries are meaningful (left uninitialised: a
+  // projection is evaluated several times per query).
+  std::array<double, kMaxTerms> weight;
+  std::array<Vec3, kMaxTerms> direction;
 
   static FactoredHessian scaledIdentity(double a) {
     FactoredHessian H;
@@ -194,21 +196,34 @@ double certificateAlong(const Target& target, const DiskInShape& disk, double rh
   return (w.dot(target.support(-w)) - disk.support(w)) / length - rho;
 }
 
-/// The best certificate at the iterate, tried in order while the gap to
-/// `distance` stays above `gap_tolerance`: along the separation q - x; along
+/// How close to closing the separation's certificate must be before the other
+/// directions are tried: they only help at the optimum, where what is left of
+/// the gap is the rounding of q - x's direction (about (r + R) eps scale / d,
+/// kSeparationRoundingFactor eps scale^2 / d with R <= scale), or when it is
+/// already within kRefineCertificate * scale. Elsewhere the iterate is simply
+/// not optimal yet and the step, not a better certificate, is needed.
+constexpr double kRefineCertificate = 1e-8;
+constexpr double kSeparationRoundingFactor = 16 * std::numeric_limits<double>::epsilon();
+
+/// The best certificate at the iterate: along the separation q - x and, when
+/// that leaves a gap above `gap_tolerance` that rounding may explain (or
+/// always, for the iterate that is returned: `returned`), along
 /// H3 (q - x), which keeps the components of q - x normal to the feature of X
 /// that q lies on (a face's normal, the plane normal to an edge) and drops the
 /// rest, which for small distances is rounding (q - x knows its direction only
-/// to about eps * scale / d); at the disk's normals +-n, where g has the disk's
-/// kink (face optima).
+/// to about eps * scale / d); then at the disk's normals +-n, where g has the
+/// disk's kink (face optima).
 template <typename Target>
 double certificateAt(const Target& target, const DiskInShape& disk, double rho,
-                     const ShapeIterate& at, double distance, double gap_tolerance) {
+                     const ShapeIterate& at, double distance, double gap_tolerance,
+                     double scale, bool returned) {
   const Vec3 separation = at.q - at.x;
   double best = certificateAlong(target, disk, rho, separation);
-  if (distance - best > gap_tolerance) {
-    best = std::max(best, certificateAlong(target, disk, rho, at.hessian3.times(separation)));
-  }
+  const double refine_below =
+      kRefineCertificate * scale + kSeparationRoundingFactor * scale * (scale / distance);
+  const double gap = distance - best;
+  if (gap <= gap_tolerance || !(returned || gap <= refine_below)) return std::max(best, 0.0);
+  best = std::max(best, certificateAlong(target, disk, rho, at.hessian3.times(separation)));
   if (distance - best > gap_tolerance) {
     best = std::max({best, certificateAlong(target, disk, rho, disk.n),
                      certificateAlong(target, disk, rho, -disk.n)});
@@ -359,15 +374,18 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     solution.lower_bound = std::min(lower, solution.distance);
     return solution;
   };
-  auto certify = [&]() {
-    return certificateAt(target, disk, rho, at, std::sqrt(2.0 * at.psi) - rho, gap_tolerance);
+  // `returned`: the iterate will be returned whatever the certificate says, so
+  // every direction is worth trying.
+  auto certify = [&](bool returned) {
+    return certificateAt(target, disk, rho, at, std::sqrt(2.0 * at.psi) - rho, gap_tolerance,
+                         scale, returned);
   };
 
   for (int iteration = 1; iteration <= kMaxShapeIterations; ++iteration) {
     const double core_distance = std::sqrt(2.0 * at.psi);
     if (core_distance <= rho) return finish(iteration, 0.0);
     const double distance = core_distance - rho;
-    const double lower = certify();
+    const double lower = certify(/*returned=*/false);
     if (goal == SolverGoal::intersection) {
       if (distance <= touching || lower > touching) return finish(iteration, lower);
     }
@@ -406,16 +424,16 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
       const Vec2 step = modelStepOnDisk(planarHessian(at.hessian3, disk), at.gradient, s, r,
                                         kShapeGradientRounding * scale);
       const double slope = at.gradient.dot(step);
-      if (!(slope < 0.0)) return finish(iteration, lower);  // stationary to rounding
+      if (!(slope < 0.0)) return finish(iteration, certify(true));  // stationary to rounding
       shapeLineSearch(target, disk, at, step, slope, &next);
       moved = next.psi < at.psi;
     }
-    if (!moved) return finish(iteration, lower);  // no representable decrease
+    if (!moved) return finish(iteration, certify(true));  // no representable decrease
     const double decrease = at.psi - next.psi;
     at = next;
-    if (decrease <= kShapeStagnation * scale * scale) return finish(iteration, certify());
+    if (decrease <= kShapeStagnation * scale * scale) return finish(iteration, certify(true));
   }
-  return finish(kMaxShapeIterations, certify());
+  return finish(kMaxShapeIterations, certify(true));
 }
 
 }  // namespace internal
