@@ -32,24 +32,27 @@ namespace internal {
 using Mat2 = Eigen::Matrix2d;
 
 /// The Hessian of psi_3(x) = dist(x, X)^2 / 2, I - D proj_X(x) (symmetric,
-/// 0 <= H <= I; 0 inside X), kept factored as H = a I + sum_k b_k v_k v_k^T
-/// with at most four terms: for FCL's shapes the v_k are the shape's axes or
-/// the feature's normal and tangents, so nothing 3x3 is ever multiplied out.
-/// The solver needs only H's 2x2 block over the disk's plane and H w.
+/// 0 <= H <= I; 0 inside X), kept factored in X's frame as
+/// H = diag(diagonal) + sum_k b_k v_k v_k^T with at most two rank-one terms:
+/// for FCL's shapes the diagonal holds the shape's axes (a box's clamped axes, a
+/// capsule's I - z z^T) and the terms a feature's normal or tangents, so
+/// nothing 3x3 is ever multiplied out. The solver needs only H's 2x2 block over
+/// the disk's plane, w^T H w and H w.
 struct FactoredHessian {
-  static constexpr int kMaxTerms = 4;
-  double identity{0};
+  static constexpr int kMaxTerms = 2;
+  Vec3 diagonal{Vec3::Zero()};
   int count{0};
   // Only the first `count` entries are meaningful (left uninitialised: a
   // projection is evaluated several times per query).
   std::array<double, kMaxTerms> weight;
   std::array<Vec3, kMaxTerms> direction;
 
-  static FactoredHessian scaledIdentity(double a) {
+  static FactoredHessian diagonalOf(const Vec3& d) {
     FactoredHessian H;
-    H.identity = a;
+    H.diagonal = d;
     return H;
   }
+  static FactoredHessian identity() { return diagonalOf(Vec3::Ones()); }
   FactoredHessian& add(double b, const Vec3& v) {
     weight[count] = b;
     direction[count] = v;
@@ -58,7 +61,7 @@ struct FactoredHessian {
   }
   /// w^T H w.
   double quadratic(const Vec3& w) const {
-    double value = identity * w.squaredNorm();
+    double value = diagonal.dot(w.cwiseProduct(w));
     for (int k = 0; k < count; ++k) {
       const double along = direction[k].dot(w);
       value += weight[k] * along * along;
@@ -66,7 +69,7 @@ struct FactoredHessian {
     return value;
   }
   Vec3 times(const Vec3& w) const {
-    Vec3 product = identity * w;
+    Vec3 product = diagonal.cwiseProduct(w);
     for (int k = 0; k < count; ++k) product += (weight[k] * direction[k].dot(w)) * direction[k];
     return product;
   }
@@ -177,7 +180,11 @@ ShapeIterate evaluateAt(const Target& target, const DiskInShape& disk, const Vec
 
 /// psi's Hessian over the disk: [u v]^T H3 [u v].
 inline Mat2 planarHessian(const FactoredHessian& H, const DiskInShape& disk) {
-  Mat2 block = H.identity * Mat2::Identity();
+  Mat2 block = Mat2::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const Vec2 d(disk.u[i], disk.v[i]);
+    block += H.diagonal[i] * d * d.transpose();
+  }
   for (int k = 0; k < H.count; ++k) {
     const Vec2 d = disk.inPlane(H.direction[k]);
     block += H.weight[k] * d * d.transpose();

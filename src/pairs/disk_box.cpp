@@ -12,13 +12,13 @@ struct BoxTarget {
 
   Projection project(const Vec3& y) const {
     Vec3 q;
-    // psi's Hessian: e_i e_i^T for each clamped axis.
-    FactoredHessian hessian;
+    // psi's Hessian: diagonal, 1 along each clamped axis.
+    Vec3 clamped;
     for (int i = 0; i < 3; ++i) {
       q[i] = std::clamp(y[i], -half[i], half[i]);
-      if (q[i] != y[i]) hessian.add(1.0, Vec3::Unit(i));
+      clamped[i] = q[i] != y[i] ? 1.0 : 0.0;
     }
-    return Projection{q, hessian};
+    return Projection{q, FactoredHessian::diagonalOf(clamped)};
   }
 
   Vec3 support(const Vec3& w) const {

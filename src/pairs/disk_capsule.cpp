@@ -14,9 +14,8 @@ struct SegmentTarget {
   Projection project(const Vec3& y) const {
     const double z = std::clamp(y.z(), -half_length, half_length);
     // Inside the segment's span psi's Hessian is I - z z^T, beyond an end I.
-    FactoredHessian hessian = FactoredHessian::scaledIdentity(1.0);
-    if (z == y.z()) hessian.add(-1.0, Vec3::UnitZ());
-    return Projection{Vec3(0.0, 0.0, z), hessian};
+    return Projection{Vec3(0.0, 0.0, z),
+                      FactoredHessian::diagonalOf(Vec3(1.0, 1.0, z == y.z() ? 0.0 : 1.0))};
   }
 
   Vec3 support(const Vec3& w) const {  // ties take the + end

@@ -55,7 +55,7 @@ struct ConeTarget {
     const Vec3 e = rho > 0.0 ? Vec3(y.x() / rho, y.y() / rho, 0.0) : Vec3::UnitX();
     const Vec3 t(-e.y(), e.x(), 0.0);
     const double turn = rho > 0.0 ? nearest.x() / rho : jacobian_weight * unit_edge.x() * unit_edge.x();
-    FactoredHessian hessian = FactoredHessian::scaledIdentity(1.0);
+    FactoredHessian hessian = FactoredHessian::identity();
     if (jacobian_weight > 0.0) hessian.add(-1.0, unit_edge.x() * e + unit_edge.y() * Vec3::UnitZ());
     hessian.add(-turn, t);
     const Vec3 q_S = nearest.x() * e + nearest.y() * Vec3::UnitZ();

@@ -18,8 +18,7 @@ struct CylinderTarget {
     // psi's Hessian in the cylinder frame: z z^T beyond an end cap; in the
     // plane, 0 inside the radius, else that of a circle's disk,
     // e e^T + (1 - radius / rho) t t^T (e radial, t tangent).
-    FactoredHessian hessian;
-    if (z != y.z()) hessian.add(1.0, Vec3::UnitZ());
+    FactoredHessian hessian = FactoredHessian::diagonalOf(Vec3(0.0, 0.0, z != y.z() ? 1.0 : 0.0));
     Vec3 q_S(y.x(), y.y(), z);
     if (rho > radius) {
       const double shrink = radius / rho;

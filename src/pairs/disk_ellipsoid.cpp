@@ -74,8 +74,7 @@ struct EllipsoidTarget {
     }
     // D proj = M - v v^T / (a.v) (implicit differentiation of q^T A q = 1), so
     // psi's Hessian is sum_i (1 - m_i) e_i e_i^T + v v^T / (a.v).
-    FactoredHessian hessian;
-    for (int i = 0; i < 3; ++i) hessian.add(1.0 - m_diagonal[i], Vec3::Unit(i));
+    FactoredHessian hessian = FactoredHessian::diagonalOf(Vec3::Ones() - m_diagonal);
     const double av = a.dot(v);
     if (av > 0.0) hessian.add(1.0 / av, v);
     return Projection{q_S, hessian};

@@ -15,9 +15,9 @@ inline Projection projectOntoSegment(const Vec3& x, const Vec3& a, const Vec3& b
   const double t = length_squared > 0.0 ? edge.dot(x - a) / length_squared : 0.0;
   if (t > 0.0 && t < 1.0) {
     return Projection{a + t * edge,
-                      FactoredHessian::scaledIdentity(1.0).add(-1.0 / length_squared, edge)};
+                      FactoredHessian::identity().add(-1.0 / length_squared, edge)};
   }
-  return Projection{t <= 0.0 ? a : b, FactoredHessian::scaledIdentity(1.0)};
+  return Projection{t <= 0.0 ? a : b, FactoredHessian::identity()};
 }
 
 /// Nearest point of the closed convex polygon with vertices `vertex(0..count-1)`
@@ -38,7 +38,7 @@ Projection projectOntoPolygon(const Vec3& x, int count, VertexAt vertex, const V
       return Projection{on_plane, FactoredHessian().add(1.0 / normal_squared, normal)};
     }
   }
-  Projection best{vertex(0), FactoredHessian::scaledIdentity(1.0)};
+  Projection best{vertex(0), FactoredHessian::identity()};
   double best_squared = (x - best.q).squaredNorm();
   for (int i = 0; i < count; ++i) {
     const Projection on_edge = projectOntoSegment(x, vertex(i), vertex((i + 1) % count));
