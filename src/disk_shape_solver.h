@@ -274,20 +274,29 @@ Vec2 shapeLineSearch(const Target& target, const DiskInShape& disk, const ShapeI
   return alpha * step;
 }
 
-/// The step delta minimising g.delta + delta'(H + tau I)delta / 2 subject to
-/// |s + delta| <= r (the disk-disk solver's stepOnDisk, docs/exact_distance.md
-/// section 4): the Newton step if it stays in the disk, else the multiplier mu of
-/// the disk by safeguarded secant steps on |s + delta(mu)|^2 - r^2.
+/// The step delta minimising the model g.delta + delta'(H + tau I)delta / 2
+/// subject to |s + delta| <= r, for H symmetric positive semidefinite (2x2).
+/// In H's eigenbasis (v_i, lambda_i) the model separates: the Newton step is
+/// delta_i = -g_i / (lambda_i + tau); if it leaves the disk, the multiplier
+/// mu > 0 of the disk makes s + delta(mu) = z(mu), z_i = -b_i / (lambda_i + tau +
+/// mu) with b_i = g_i - (lambda_i + tau) s_i, land on the rim: |z(mu)| = r is
+/// solved by Newton on 1/|z(mu)| - 1/r, which is concave and increasing in mu,
+/// so Newton from mu = 0 increases monotonically to the root (More and
+/// Sorensen's secular equation). The step itself is delta_i = -(g_i + mu s_i)
+/// / (lambda_i + tau + mu): no difference of O(r) numbers for small steps.
+/// tau > 0 makes the model strictly convex, so along psi's flat directions
+/// the step stays near s instead of wandering.
 ///
-/// The gradient's components along H's eigenvectors that are below its rounding
-/// (gradient_rounding: g = (x - q)_xy is a difference of coordinates of size
-/// scale) are dropped first. In exact arithmetic g is orthogonal to H's null
-/// space (g is an eigenvector of the 3-D Hessian with eigenvalue 1), so such a
-/// component is rounding only, and (H + tau I)^-1 would turn it into a long
-/// step along a flat direction, away from the optimum.
+/// Before that, the gradient's components along the eigenvectors that are below
+/// its rounding (gradient_rounding: g is a difference of coordinates of size
+/// scale) are dropped. In exact arithmetic g is orthogonal to H's null space (g
+/// is an eigenvector of the 3-D Hessian with eigenvalue 1), so such a component
+/// is rounding only, and 1 / tau would turn it into a long step along a flat
+/// direction, away from the optimum.
 inline Vec2 modelStepOnDisk(const Mat2& H, const Vec2& g_raw, const Vec2& s, double r,
                             double gradient_rounding) {
-  // H's eigenvectors: v1 (larger eigenvalue) and v2 = v1 rotated, in closed form.
+  // H's eigenpairs in closed form: v1 for the larger eigenvalue, v2 = v1 turned.
+  const double mean = 0.5 * (H(0, 0) + H(1, 1));
   const double half_difference = 0.5 * (H(0, 0) - H(1, 1));
   const double spread = std::sqrt(half_difference * half_difference + H(0, 1) * H(0, 1));
   Vec2 v1 = half_difference >= 0.0 ? Vec2(half_difference + spread, H(0, 1))
@@ -295,50 +304,37 @@ inline Vec2 modelStepOnDisk(const Mat2& H, const Vec2& g_raw, const Vec2& s, dou
   const double v1_length = v1.norm();
   v1 = v1_length > 0.0 ? Vec2(v1 / v1_length) : Vec2(1.0, 0.0);
   const Vec2 v2(-v1.y(), v1.x());
-  const double g1 = v1.dot(g_raw), g2 = v2.dot(g_raw);
-  const Vec2 g = (std::abs(g1) > gradient_rounding ? g1 : 0.0) * v1 +
-                 (std::abs(g2) > gradient_rounding ? g2 : 0.0) * v2;
-  if (g.squaredNorm() == 0.0) return Vec2::Zero();
-  const double tau = kShapeModelRegularisation * (H.trace() + 1.0);
-  auto step_for = [&](double mu) -> Vec2 {
-    const double a = H(0, 0) + tau + mu, b = H(0, 1), d = H(1, 1) + tau + mu;
-    const Vec2 rhs = g + mu * s;
-    return Vec2(-(d * rhs.x() - b * rhs.y()), -(a * rhs.y() - b * rhs.x())) / (a * d - b * b);
+  const double tau = kShapeModelRegularisation * (2.0 * mean + 1.0);
+  const double lambda[2] = {mean + spread + tau, std::max(mean - spread, 0.0) + tau};
+  const Vec2 g_basis(v1.dot(g_raw), v2.dot(g_raw));
+  const double g_i[2] = {std::abs(g_basis.x()) > gradient_rounding ? g_basis.x() : 0.0,
+                         std::abs(g_basis.y()) > gradient_rounding ? g_basis.y() : 0.0};
+  if (g_i[0] == 0.0 && g_i[1] == 0.0) return Vec2::Zero();
+  const double s_i[2] = {v1.dot(s), v2.dot(s)};
+  auto step_for = [&](double mu) {
+    return -(g_i[0] + mu * s_i[0]) / (lambda[0] + mu) * v1 -
+           (g_i[1] + mu * s_i[1]) / (lambda[1] + mu) * v2;
   };
-  const double slack = s.squaredNorm() - r * r;
-  auto excess = [&](const Vec2& delta) { return 2.0 * s.dot(delta) + delta.squaredNorm() + slack; };
-  Vec2 delta = step_for(0.0);
-  double f_lo = excess(delta);
-  if (f_lo <= 0.0) return delta;
-  double mu_lo = 0.0, mu_hi = std::max((g.norm() + tau * s.norm()) / r, tau);
-  Vec2 delta_hi = step_for(mu_hi);
-  double f_hi = excess(delta_hi);
-  for (int grow = 0; f_hi > 0.0 && grow < kShapeSecularIterations; ++grow) {
-    mu_lo = mu_hi, f_lo = f_hi;
-    mu_hi *= 4.0;
-    delta_hi = step_for(mu_hi);
-    f_hi = excess(delta_hi);
-  }
-  Vec2 best = delta_hi;
-  int last_side = 0;
+  const Vec2 newton = step_for(0.0);
+  // |s + delta|^2 - r^2 as 2 s.delta + |delta|^2 + (|s|^2 - r^2): free of cancellation.
+  if (2.0 * s.dot(newton) + newton.squaredNorm() + (s.squaredNorm() - r * r) <= 0.0) return newton;
+  const double b[2] = {g_i[0] - lambda[0] * s_i[0], g_i[1] - lambda[1] * s_i[1]};
+  double mu = 0.0;
   for (int iteration = 0; iteration < kShapeSecularIterations; ++iteration) {
-    double mu = mu_hi - f_hi * (mu_hi - mu_lo) / (f_hi - f_lo);
-    if (!(mu > mu_lo && mu < mu_hi)) mu = 0.5 * (mu_lo + mu_hi);
-    delta = step_for(mu);
-    const double f = excess(delta);
-    if (f > 0.0) {
-      mu_lo = mu, f_lo = f;
-      if (last_side == 1) f_hi *= 0.5;
-      last_side = 1;
-    } else {
-      mu_hi = mu, f_hi = f, best = delta;
-      if (last_side == -1) f_lo *= 0.5;
-      last_side = -1;
-      if (f >= -kShapeSecularTolerance * r * r) break;
-    }
-    if (mu_hi - mu_lo <= kShapeSecularTolerance * mu_hi) break;
+    const double z0 = b[0] / (lambda[0] + mu), z1 = b[1] / (lambda[1] + mu);
+    const double z_squared = z0 * z0 + z1 * z1;
+    const double z_length = std::sqrt(z_squared);
+    // phi = 1/|z| - 1/r; phi' = (sum z_i^2 / (lambda_i + mu)) / |z|^3.
+    const double slope = (z0 * z0 / (lambda[0] + mu) + z1 * z1 / (lambda[1] + mu)) /
+                         (z_squared * z_length);
+    const double phi = 1.0 / z_length - 1.0 / r;
+    const double next = mu - phi / slope;
+    if (!(next > mu)) break;  // at the root to rounding
+    const bool settled = next - mu <= kShapeSecularTolerance * next;
+    mu = next;
+    if (settled) break;
   }
-  return best;
+  return step_for(mu);
 }
 
 /// (cos, sin) of a turn by about dtheta: the rational (Cayley) rotation by
