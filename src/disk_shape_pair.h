@@ -23,11 +23,11 @@ namespace internal {
 template <typename S>
 DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
   const Mat3 R_WS = X_WS.linear().template cast<double>();
-  const Mat3 R_SD = R_WS.transpose() * X_WD.linear().template cast<double>();
+  const Mat3 R_WD = X_WD.linear().template cast<double>();
   const Vec3 offset =
       X_WD.translation().template cast<double>() - X_WS.translation().template cast<double>();
-  return DiskInShape{R_WS.transpose() * offset, R_SD.col(0), R_SD.col(1), R_SD.col(2),
-                     double(radius)};
+  const Vec3 u = R_WS.transpose() * R_WD.col(0), v = R_WS.transpose() * R_WD.col(1);
+  return DiskInShape{R_WS.transpose() * offset, u, v, u.cross(v), double(radius)};
 }
 
 /// Whether every length of a shape is usable: finite, >= 0, within the range of
