@@ -409,13 +409,14 @@ struct TableWrappers {
 
 // ---------------------------------------------------------------------------
 // 2b. The shortcut for FCL's object-level entry points (defined in section 5):
-//     a pair of Disks is answered at once, every other pair goes to FCL's
+//     a pair of Disks, or a Disk and a shape of the table of section 1b (but a
+//     cylinder), is answered at once; every other pair goes to FCL's
 //     geometry-level entry, which is all FCL's object-level entry does with it.
 //     The shortcut is taken only where FCL's entry would do nothing but build
 //     a GJK solver object, look up the table and call the slot above, so the
 //     answers are those of the tables, bit for bit.
 
-/// Whether FCL's distance entry, for a pair of Disks, only calls the slot. It
+/// Whether FCL's distance entry, for a pair with a Disk, only calls the slot. It
 /// does more for the indep solver on a signed request whose result is already
 /// negative (it recomputes a penetration depth with collide()), and for a
 /// solver type it does not know (it returns -1).
@@ -427,12 +428,39 @@ bool distanceEntryOnlyCallsSlot(const fcl::DistanceRequest<S>& request,
          !(request.enable_signed_distance && result.min_distance < 0);
 }
 
-/// Whether FCL's collision entry, for a pair of Disks, only calls the slot. It
+/// Whether FCL's collision entry, for a pair with a Disk, only calls the slot. It
 /// does not for num_max_contacts == 0 (a warning and 0) or an unknown solver.
 template <typename S>
 bool collisionEntryOnlyCallsSlot(const fcl::CollisionRequest<S>& request) {
   return request.num_max_contacts != 0 && (request.gjk_solver_type == fcl::GST_LIBCCD ||
                                            request.gjk_solver_type == fcl::GST_INDEP);
+}
+
+/// Calls answer(shape) with `geometry` as the shape class of its node type when
+/// a Disk is answered against that type by fcl_disk (section 1b), except
+/// GEOM_CYLINDER (a Disk is one too; FCL's tables tell them apart); returns
+/// whether it did.
+template <typename S, typename Answer, int... Types>
+bool withDiskPairShape(const CollisionGeometry<S>* geometry, Answer&& answer,
+                       std::integer_sequence<int, Types...>) {
+  const int node_type = geometry->getNodeType();
+  const auto try_type = [&](auto type) {
+    constexpr int kType = decltype(type)::value;
+    if constexpr (kHasDiskPair<kType, S> && kType != fcl::GEOM_CYLINDER) {
+      if (node_type != kType) return false;
+      answer(static_cast<const PairShape<kType, S>&>(*geometry));
+      return true;
+    } else {
+      return false;
+    }
+  };
+  return (try_type(std::integral_constant<int, Types>()) || ...);
+}
+
+template <typename S, typename Answer>
+bool withDiskPairShape(const CollisionGeometry<S>* geometry, Answer&& answer) {
+  return withDiskPairShape(geometry, std::forward<Answer>(answer),
+                           std::make_integer_sequence<int, fcl::NODE_COUNT>());
 }
 
 template <typename S>
@@ -441,9 +469,20 @@ S distanceOfObjects(const fcl::CollisionObject<S>* o1, const fcl::CollisionObjec
   const CollisionGeometry<S>* g1 = o1->collisionGeometry().get();
   const CollisionGeometry<S>* g2 = o2->collisionGeometry().get();
   const Disk<S>* disk1 = asDiskOfThisLibrary(g1);
-  const Disk<S>* disk2 = disk1 ? asDiskOfThisLibrary(g2) : nullptr;
-  if (disk2 && distanceEntryOnlyCallsSlot(request, result)) {
-    return answerDiskDistance(*disk1, o1->getTransform(), *disk2, o2->getTransform(), result);
+  const Disk<S>* disk2 = asDiskOfThisLibrary(g2);
+  if ((disk1 || disk2) && distanceEntryOnlyCallsSlot(request, result)) {
+    const Transform3<S>& tf1 = o1->getTransform();
+    const Transform3<S>& tf2 = o2->getTransform();
+    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, result);
+    S distance = 0;
+    const bool answered =
+        disk1 ? withDiskPairShape(g2, [&](const auto& shape) {
+                  distance = answerDiskShapeDistance(*disk1, tf1, shape, tf2, true, result);
+                })
+              : withDiskPairShape(g1, [&](const auto& shape) {
+                  distance = answerDiskShapeDistance(*disk2, tf2, shape, tf1, false, result);
+                });
+    if (answered) return distance;
   }
   return fcl::distance(g1, o1->getTransform(), g2, o2->getTransform(), request, result);
 }
@@ -455,10 +494,20 @@ std::size_t collideObjects(const fcl::CollisionObject<S>* o1, const fcl::Collisi
   const CollisionGeometry<S>* g1 = o1->collisionGeometry().get();
   const CollisionGeometry<S>* g2 = o2->collisionGeometry().get();
   const Disk<S>* disk1 = asDiskOfThisLibrary(g1);
-  const Disk<S>* disk2 = disk1 ? asDiskOfThisLibrary(g2) : nullptr;
-  if (disk2 && collisionEntryOnlyCallsSlot(request)) {
-    return answerDiskCollision(*disk1, o1->getTransform(), *disk2, o2->getTransform(), request,
-                               result);
+  const Disk<S>* disk2 = asDiskOfThisLibrary(g2);
+  if ((disk1 || disk2) && collisionEntryOnlyCallsSlot(request)) {
+    const Transform3<S>& tf1 = o1->getTransform();
+    const Transform3<S>& tf2 = o2->getTransform();
+    if (disk1 && disk2) return answerDiskCollision(*disk1, tf1, *disk2, tf2, request, result);
+    std::size_t contacts = 0;
+    const bool answered =
+        disk1 ? withDiskPairShape(g2, [&](const auto& shape) {
+                  contacts = answerDiskShapeCollision(*disk1, tf1, shape, tf2, true, request, result);
+                })
+              : withDiskPairShape(g1, [&](const auto& shape) {
+                  contacts = answerDiskShapeCollision(*disk2, tf2, shape, tf1, false, request, result);
+                });
+    if (answered) return contacts;
   }
   return fcl::collide(g1, o1->getTransform(), g2, o2->getTransform(), request, result);
 }
