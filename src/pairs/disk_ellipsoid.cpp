@@ -8,8 +8,7 @@ namespace internal {
 namespace {
 
 /// The projection's root t is found to this relative accuracy, within this many
-/// Newton/bisection steps (Newton from the left on the convex, decreasing
-/// secular function converges monotonically; bisection only guards rounding).
+/// safeguarded Newton steps (bisection only where Newton would leave the bracket).
 constexpr double kSecularRootTolerance = 4 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxSecularSteps = 100;
 
@@ -28,21 +27,25 @@ struct EllipsoidTarget {
     }
     if (level <= 1.0 && !off_flat_axis) return Projection{y, FactoredHessian()};
     // q_i = e_i^2 y_i / (t + e_i^2) with t > 0 the root of
-    // F(t) = sum (e_i y_i / (t + e_i^2))^2 - 1 (convex and decreasing).
+    // F(t) = sum (e_i y_i / (t + e_i^2))^2 = 1 (F decreasing). Newton runs on
+    // phi(t) = 1 / sqrt(F(t)) - 1, which is nearly linear in t (exactly, for a
+    // sphere): a few steps from anywhere, safeguarded by the bracket.
     const Vec3 e2 = e.cwiseProduct(e);
     const Vec3 ey = e.cwiseProduct(y);
-    auto secular = [&](double t, double* derivative) {
-      double f = -1.0, df = 0.0;
+    auto phi = [&](double t, double* derivative) {
+      double f = 0.0, df = 0.0;
       for (int i = 0; i < 3; ++i) {
         if (!(e[i] > 0.0)) continue;
         const double ratio = ey[i] / (t + e2[i]);
         f += ratio * ratio;
         df -= 2.0 * ratio * ratio / (t + e2[i]);
       }
-      *derivative = df;
-      return f;
+      const double root = std::sqrt(f);
+      *derivative = -0.5 * df / (f * root);
+      return 1.0 / root - 1.0;
     };
-    // Bracket: F(lo) >= 0 >= F(hi); lo = e_min |y| - e_max^2 is below the root.
+    // Bracket: phi(lo) <= 0 <= phi(hi); lo = e_min |y| - e_max^2 is below the
+    // root, hi = |e o y| above it.
     double e_min = std::numeric_limits<double>::infinity(), e_max = 0.0;
     for (int i = 0; i < 3; ++i) {
       if (e[i] > 0.0) e_min = std::min(e_min, e[i]);
@@ -53,10 +56,10 @@ struct EllipsoidTarget {
     double t = lo;
     for (int step = 0; step < kMaxSecularSteps; ++step) {
       double derivative;
-      const double f = secular(t, &derivative);
-      if (f > 0.0) lo = t; else hi = t;
-      if (f == 0.0) break;
-      double next = derivative < 0.0 ? t - f / derivative : 0.5 * (lo + hi);
+      const double value = phi(t, &derivative);
+      if (value < 0.0) lo = t; else hi = t;
+      if (value == 0.0) break;
+      double next = derivative > 0.0 ? t - value / derivative : 0.5 * (lo + hi);
       if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
       const bool settled = std::abs(next - t) <= kSecularRootTolerance * std::max(t, e_max * e_max);
       t = next;
