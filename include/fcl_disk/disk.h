@@ -29,7 +29,9 @@ void ensureDiskFunctionsRegistered();
 /// types are a closed enum) routes it through the GEOM_CYLINDER entries, which
 /// fcl_disk replaces with wrappers that answer disk-disk pairs analytically and
 /// forward every other pair (real cylinders included) to FCL's own function.
-/// Disk versus other shapes is answered by FCL (GJK on the flat cylinder, which is
+/// A Disk against FCL's primitives is answered by diskShapeDistance() and
+/// diskShapeIntersect() (disk_shape_distance.h); against meshes and octrees by FCL
+/// (GJK on the flat cylinder, which is
 /// exactly the disk).
 ///
 /// fcl_disk's functions are installed when the library is loaded (default method:
