@@ -8,14 +8,55 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The closed flat triangle, in its frame (a zero-area triangle is the union of
-/// its edges).
+/// The closed flat triangle a, b, c, in its frame (a zero-area triangle is the
+/// union of its edges).
 struct TriangleTarget {
   std::array<Vec3, 3> vertices;
   Vec3 normal;  ///< (b - a) x (c - a), not normalised; zero when degenerate.
 
+  /// Ericson's region test (Real-Time Collision Detection, 5.1.5): the Voronoi
+  /// region of x among the vertices, edges and face decides the nearest point
+  /// from six dot products. A degenerate triangle, whose face region has no
+  /// area, goes to the general polygon projection (its nearest edge).
   Projection project(const Vec3& x) const {
-    return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, normal);
+    const Vec3& a = vertices[0];
+    const Vec3& b = vertices[1];
+    const Vec3& c = vertices[2];
+    const Vec3 ab = b - a, ac = c - a, ap = x - a;
+    const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+    if (d1 <= 0.0 && d2 <= 0.0) return Projection{a, FactoredHessian::identity()};
+    const Vec3 bp = x - b;
+    const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+    if (d3 >= 0.0 && d4 <= d3) return Projection{b, FactoredHessian::identity()};
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
+      return onEdge(a, ab, d1 / (d1 - d3));
+    }
+    const Vec3 cp = x - c;
+    const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+    if (d6 >= 0.0 && d5 <= d6) return Projection{c, FactoredHessian::identity()};
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
+      return onEdge(a, ac, d2 / (d2 - d6));
+    }
+    const double va = d3 * d6 - d5 * d4;
+    const double towards_c = d4 - d3, towards_b = d5 - d6;
+    if (va <= 0.0 && towards_c >= 0.0 && towards_b >= 0.0 && towards_c + towards_b > 0.0) {
+      return onEdge(b, c - b, towards_c / (towards_c + towards_b));
+    }
+    const double area = va + vb + vc;  // |normal|^2
+    if (!(area > 0.0)) {
+      return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, normal);
+    }
+    const double v = vb / area, w = vc / area;
+    return Projection{a + v * ab + w * ac,
+                      FactoredHessian::diagonalOf(Vec3::Zero()).add(1.0 / area, normal)};
+  }
+
+  /// The point from + t edge of an edge, 0 < t < 1: psi's Hessian I - e e^T.
+  static Projection onEdge(const Vec3& from, const Vec3& edge, double t) {
+    return Projection{from + t * edge,
+                      FactoredHessian::identity().add(-1.0 / edge.squaredNorm(), edge)};
   }
 
   Vec3 support(const Vec3& w) const {
