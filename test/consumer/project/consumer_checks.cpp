@@ -7,7 +7,9 @@
 
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/halfspace.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
@@ -698,57 +700,84 @@ void printBindings(const std::string& label) {
   std::fflush(stdout);
 }
 
-/// A Disk against a real fcl::Cylinder, both argument orders, both solvers,
-/// objects and geometries: the answer of fcl_disk's diskShapeDistance(), so the
-/// pair reached fcl_disk's table entry in this binary's link mode.
+/// A Disk against a real fcl::Cylinder, a Box and a Halfspace, both argument
+/// orders, both solvers, objects and geometries: the answer of fcl_disk's
+/// diskShapeDistance(), so the pair reached fcl_disk in this binary's link mode
+/// (FCL's own answer on the flat cylinder is GJK's, and against a Halfspace it
+/// crashes with libccd).
 template <typename S>
-int checkDiskVsCylinder(const DiskApi& api) {
+int checkDiskVsShapes(const DiskApi& api) {
   int failures = 0, compared = 0;
   const double tol = tolerance<S>();
+  struct ShapeCase {
+    std::string name;
+    double r;
+    fcl::Transform3<double> X_WD;
+    std::shared_ptr<fcl::CollisionGeometry<S>> shape;
+    fcl::Transform3<double> X_WS;
+  };
+  std::vector<ShapeCase> cases;
   for (const auto& c : cylinderCases()) {
     if (c.flat1 == c.flat2) continue;  // exactly one flat shape: it becomes the Disk
     const bool disk_first = c.flat1;
-    const double r = disk_first ? c.r1 : c.r2;
-    const double radius = disk_first ? c.r2 : c.r1, lz = disk_first ? c.lz2 : c.lz1;
-    const auto X_WD = castPose<S>(disk_first ? c.X1 : c.X2);
-    const auto X_WC = castPose<S>(disk_first ? c.X2 : c.X1);
+    cases.push_back({"real fcl::Cylinder, " + c.name, disk_first ? c.r1 : c.r2,
+                     disk_first ? c.X1 : c.X2,
+                     std::make_shared<fcl::Cylinder<S>>(S(disk_first ? c.r2 : c.r1),
+                                                        S(disk_first ? c.lz2 : c.lz1)),
+                     disk_first ? c.X2 : c.X1});
+  }
+  cases.push_back({"Box, apart", 0.5, pose({0, 0, 0}, {0.2, 0.1, 1}),
+                   std::make_shared<fcl::Box<S>>(S(0.4), S(0.3), S(0.2)),
+                   pose({0.3, 0.5, 0.8}, {1, 0.3, 0.2})});
+  cases.push_back({"Box, overlapping", 0.5, pose({0, 0, 0}, {0, 0, 1}),
+                   std::make_shared<fcl::Box<S>>(S(0.4), S(0.3), S(0.2)),
+                   pose({0.4, 0.1, 0.05}, {0, 0.3, 1})});
+  cases.push_back({"Halfspace ground, apart", 0.5, pose({0.1, 0.2, 1.0}, {0.3, 0, 1}),
+                   std::make_shared<fcl::Halfspace<S>>(fcl::Vector3<S>(0, 0, 1), S(0)),
+                   pose({0, 0, 0}, {0, 0, 1})});
+  cases.push_back({"Halfspace ground, crossing", 0.5, pose({0.1, 0.2, 0.1}, {1, 0, 0.2}),
+                   std::make_shared<fcl::Halfspace<S>>(fcl::Vector3<S>(0, 0, 1), S(0)),
+                   pose({0, 0, 0}, {0, 0, 1})});
+  for (const auto& c : cases) {
+    const auto X_WD = castPose<S>(c.X_WD);
+    const auto X_WS = castPose<S>(c.X_WS);
     std::shared_ptr<fcl::CollisionGeometry<S>> disk;
     ExactAnswer<S> expected;
     if constexpr (std::is_same<S, float>::value) {
-      disk = api.make_disk_f(S(r));
-      expected = api.disk_cylinder_f(S(r), X_WD, S(radius), S(lz), X_WC);
+      disk = api.make_disk_f(S(c.r));
+      expected = api.disk_shape_f(S(c.r), X_WD, *c.shape, X_WS);
     } else {
-      disk = api.make_disk_d(S(r));
-      expected = api.disk_cylinder_d(S(r), X_WD, S(radius), S(lz), X_WC);
+      disk = api.make_disk_d(S(c.r));
+      expected = api.disk_shape_d(S(c.r), X_WD, *c.shape, X_WS);
     }
-    const auto cylinder = std::make_shared<fcl::Cylinder<S>>(S(radius), S(lz));
     for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
       for (auto path : {Path::objects, Path::geometries}) {
         for (bool disk_is_o1 : {true, false}) {
-          const auto d = disk_is_o1 ? queryDistance<S>(path, solver, disk, X_WD, cylinder, X_WC)
-                                    : queryDistance<S>(path, solver, cylinder, X_WC, disk, X_WD);
+          const auto d = disk_is_o1 ? queryDistance<S>(path, solver, disk, X_WD, c.shape, X_WS)
+                                    : queryDistance<S>(path, solver, c.shape, X_WS, disk, X_WD);
           const fcl::Vector3<S>& on_disk = disk_is_o1 ? d.p1 : d.p2;
-          const fcl::Vector3<S>& on_cylinder = disk_is_o1 ? d.p2 : d.p1;
+          const fcl::Vector3<S>& on_shape = disk_is_o1 ? d.p2 : d.p1;
           const bool ok = std::abs(double(d.distance) - double(expected.distance)) <= tol &&
                           double((on_disk - expected.p1).norm()) <= tol &&
-                          double((on_cylinder - expected.p2).norm()) <= tol;
+                          double((on_shape - expected.p2).norm()) <= tol;
           ++compared;
           if (!ok) {
             failures += report(
-                false, "Disk vs real fcl::Cylinder: " + c.name + ": " + scalarName<S>() + " " +
-                           solverName(solver) + " " + pathName(path) +
-                           (disk_is_o1 ? " (disk first)" : " (cylinder first)") + ": got " +
-                           fmt(double(d.distance)) + " " + fmt(on_disk) + " " + fmt(on_cylinder) +
-                           ", diskShapeDistance " + fmt(double(expected.distance)) + " " +
-                           fmt(expected.p1) + " " + fmt(expected.p2));
+                false, "Disk vs " + c.name + ": " + scalarName<S>() + " " + solverName(solver) +
+                           " " + pathName(path) + (disk_is_o1 ? " (disk first)" : " (disk second)") +
+                           ": got " + fmt(double(d.distance)) + " " + fmt(on_disk) + " " +
+                           fmt(on_shape) + ", diskShapeDistance " +
+                           fmt(double(expected.distance)) + " " + fmt(expected.p1) + " " +
+                           fmt(expected.p2));
           }
         }
       }
     }
   }
   if (failures == 0) {
-    report(compared > 0, std::string("Disk vs real fcl::Cylinder (") + scalarName<S>() + "): " +
-                             std::to_string(compared) + " queries answered by diskShapeDistance");
+    report(compared > 0, std::string("Disk vs real fcl::Cylinder, Box, Halfspace (") +
+                             scalarName<S>() + "): " + std::to_string(compared) +
+                             " queries answered by diskShapeDistance");
     if (compared == 0) ++failures;
   }
   return failures;
@@ -776,9 +805,10 @@ int runAllChecks(const std::string& label, const DiskApi& api, const CylinderBas
       "real fcl::Cylinder pairs",
       cylinderQueries(plainFlatCylinderD, plainFlatCylinderF, /*include_flat_flat=*/true),
       baseline);
-  // ... and a Disk against a real cylinder is fcl_disk's answer, on every path.
-  failures += checkDiskVsCylinder<double>(api);
-  if (float_tables_shared) failures += checkDiskVsCylinder<float>(api);
+  // ... and a Disk against a real cylinder (or a box, a halfspace) is fcl_disk's
+  // answer, on every path.
+  failures += checkDiskVsShapes<double>(api);
+  if (float_tables_shared) failures += checkDiskVsShapes<float>(api);
   failures += checkBroadphaseDistance(api);
   failures += checkBroadphaseCollision(api);
   std::printf("==== %s: %d failure(s) ====\n", label.c_str(), failures);

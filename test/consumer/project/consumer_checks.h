@@ -50,13 +50,14 @@ struct DiskApi {
                                          double r2, const fcl::Transform3<double>& X_W2);
   IntersectAnswer<float> (*intersect_f)(float r1, const fcl::Transform3<float>& X_W1, float r2,
                                         const fcl::Transform3<float>& X_W2);
-  /// diskShapeDistance() against a real fcl::Cylinder(radius, lz): p1 on the
-  /// disk, p2 on the cylinder.
-  ExactAnswer<double> (*disk_cylinder_d)(double r, const fcl::Transform3<double>& X_WD,
-                                         double radius, double lz,
-                                         const fcl::Transform3<double>& X_WC);
-  ExactAnswer<float> (*disk_cylinder_f)(float r, const fcl::Transform3<float>& X_WD, float radius,
-                                        float lz, const fcl::Transform3<float>& X_WC);
+  /// diskShapeDistance() against `shape` (a real fcl::Cylinder, a Box or a
+  /// Halfspace): p1 on the disk, p2 on the shape.
+  ExactAnswer<double> (*disk_shape_d)(double r, const fcl::Transform3<double>& X_WD,
+                                      const fcl::CollisionGeometry<double>& shape,
+                                      const fcl::Transform3<double>& X_WS);
+  ExactAnswer<float> (*disk_shape_f)(float r, const fcl::Transform3<float>& X_WD,
+                                     const fcl::CollisionGeometry<float>& shape,
+                                     const fcl::Transform3<float>& X_WS);
 };
 
 /// The DiskApi of the binary this is linked into (consumer_disk_api.cpp; only in

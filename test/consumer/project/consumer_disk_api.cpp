@@ -4,6 +4,8 @@
 
 #include "consumer_checks.h"
 
+#include <limits>
+
 namespace consumer {
 namespace {
 
@@ -33,10 +35,23 @@ IntersectAnswer<S> intersect(S r1, const fcl::Transform3<S>& X_W1, S r2,
 }
 
 template <typename S>
-ExactAnswer<S> diskCylinder(S r, const fcl::Transform3<S>& X_WD, S radius, S lz,
-                            const fcl::Transform3<S>& X_WC) {
-  const fcl_disk::DiskShapeDistanceResult<S> answer =
-      fcl_disk::diskShapeDistance(r, X_WD, fcl::Cylinder<S>(radius, lz), X_WC);
+ExactAnswer<S> diskShape(S r, const fcl::Transform3<S>& X_WD,
+                         const fcl::CollisionGeometry<S>& shape, const fcl::Transform3<S>& X_WS) {
+  fcl_disk::DiskShapeDistanceResult<S> answer;
+  switch (shape.getNodeType()) {
+    case fcl::GEOM_CYLINDER:
+      answer = fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Cylinder<S>&>(shape), X_WS);
+      break;
+    case fcl::GEOM_BOX:
+      answer = fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Box<S>&>(shape), X_WS);
+      break;
+    case fcl::GEOM_HALFSPACE:
+      answer =
+          fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Halfspace<S>&>(shape), X_WS);
+      break;
+    default:
+      answer.distance = std::numeric_limits<S>::quiet_NaN();
+  }
   return {answer.distance, answer.p_W_disk, answer.p_W_shape};
 }
 
@@ -45,7 +60,7 @@ ExactAnswer<S> diskCylinder(S r, const fcl::Transform3<S>& X_WD, S radius, S lz,
 const DiskApi& linkedDiskApi() {
   static const DiskApi api{CONSUMER_BINARY_NAME,  makeDisk<double>,  makeDisk<float>,
                            exact<double>,         exact<float>,      intersect<double>,
-                           intersect<float>,      diskCylinder<double>, diskCylinder<float>};
+                           intersect<float>,      diskShape<double>, diskShape<float>};
   return api;
 }
 
