@@ -1,8 +1,12 @@
-// A small planner-style scene: disks next to FCL's own shapes, queried through
-// plain fcl::distance / fcl::collide and a broadphase manager.
+// A small planner-style scene: disks next to FCL's own shapes (a ground
+// halfspace among them), queried through plain fcl::distance / fcl::collide and a
+// broadphase manager. Every pair with a disk is answered by fcl_disk.
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/halfspace.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
@@ -29,6 +33,7 @@ Transform3d pose(const Vector3d& centre, const Vector3d& normal) {
 struct Named {
   std::string name;
   std::unique_ptr<fcl::CollisionObjectd> object;
+  bool is_disk;
 };
 
 }  // namespace
@@ -43,7 +48,9 @@ int main() {
   std::vector<Named> scene;
   auto add = [&](std::string name, std::shared_ptr<fcl::CollisionGeometryd> geometry,
                  const Transform3d& X) {
-    scene.push_back({std::move(name), std::make_unique<fcl::CollisionObjectd>(geometry, X)});
+    const bool is_disk = dynamic_cast<const fcl_disk::Diskd*>(geometry.get()) != nullptr;
+    scene.push_back(
+        {std::move(name), std::make_unique<fcl::CollisionObjectd>(geometry, X), is_disk});
   };
   add("coin (tilted)", coin, pose({0, 0, 0}, {0, 1, 2}));
   add("plate", plate, pose({0, 0, -0.5}, {0, 0, 1}));
@@ -52,6 +59,11 @@ int main() {
   add("link", link, pose({0.6, 0, -0.5}, {1, 0, 0}));  // crosses the plate like a chain link
   add("box", std::make_shared<fcl::Boxd>(0.4, 0.4, 0.4), pose({-2, 0, 0}, {0, 0, 1}));
   add("sphere", std::make_shared<fcl::Sphered>(0.25), pose({0, 2, 0}, {0, 0, 1}));
+  add("capsule", std::make_shared<fcl::Capsuled>(0.1, 1.0), pose({1.2, 0.3, 0.4}, {0, 1, 0}));
+  add("cylinder", std::make_shared<fcl::Cylinderd>(0.3, 0.6), pose({-1, 1, 0}, {1, 0, 0}));
+  // The ground: z <= -1.2 (FCL's own GJK crashes on a flat cylinder against it).
+  add("ground", std::make_shared<fcl::Halfspaced>(Vector3d::UnitZ(), -1.2),
+      pose({0, 0, 0}, {0, 0, 1}));
 
   std::printf("fcl_disk example: %zu objects, disk method = %s\n\n", scene.size(),
               fcl_disk::registeredDiskDistanceMethod() == fcl_disk::DiskDistanceMethod::exact
@@ -59,8 +71,11 @@ int main() {
                   : "almohamad_selim");
   std::printf("%-14s %-14s %12s %9s   nearest points (world)\n", "object 1", "object 2",
               "distance", "collide");
+  // Every pair with a disk (pairs of FCL's own shapes are FCL's: its sphere,
+  // box and capsule against a halfspace crash in Debian's FCL 0.7).
   for (std::size_t i = 0; i < scene.size(); ++i) {
     for (std::size_t j = i + 1; j < scene.size(); ++j) {
+      if (!scene[i].is_disk && !scene[j].is_disk) continue;
       fcl::DistanceRequestd distance_request;
       fcl::DistanceResultd distance_result;
       fcl::distance(scene[i].object.get(), scene[j].object.get(), distance_request,
@@ -86,9 +101,12 @@ int main() {
   std::printf("\ncoin-plate: exact %.9f (certified gap %.1e), Almohamad-Selim 1994 %.9f\n",
               exact.distance, exact.certifiedGap(), report.distance);
 
-  // Broadphase: all colliding pairs and the nearest pair of the whole scene.
+  // Broadphase: all colliding pairs and the nearest pair of the scene (without
+  // the ground, which FCL's own shapes cannot be queried against).
   fcl::DynamicAABBTreeCollisionManagerd manager;
-  for (auto& entry : scene) manager.registerObject(entry.object.get());
+  for (auto& entry : scene) {
+    if (entry.name != "ground") manager.registerObject(entry.object.get());
+  }
   manager.setup();
   fcl::DefaultCollisionData<double> collision_data;
   collision_data.request.num_max_contacts = 1000;
