@@ -354,6 +354,188 @@ inline Vec2 cayleyTurn(double dtheta) {
   return Vec2((1.0 - h * h) * inverse, 2.0 * h * inverse);
 }
 
+/// When the iteration ends with its certificate open by more than this many
+/// scene sizes, a search along the rim follows (searchAlongRim). Well above the
+/// certificate's own rounding, so only unconverged answers pay for it.
+constexpr double kShapeFallbackGap = 1e-12;
+/// The rim search brackets the minimum with steps from kShapeFirstRimStep
+/// radians growing by kShapeRimStepGrowth up to half a turn, then shrinks the
+/// bracket by kShapeRimSearchSteps golden-section steps (enough to reach the
+/// resolution of the angle from the first step's bracket).
+constexpr double kShapeFirstRimStep = 1e-9;
+constexpr double kShapeRimStepGrowth = 4.0;
+constexpr int kShapeRimSearchSteps = 80;
+
+/// The local minimum of dist(x(theta), X) along the rim next to the rim iterate
+/// `at`, by bracketing and golden-section search on the distance itself. Where
+/// the disk's rim and X touch or nearly touch, psi = d^2 / 2 grows like the
+/// fourth power of the angle from the optimum and its gradient sinks below
+/// rounding before d is within 1e-12 of the scene; d grows quadratically and
+/// its values, not its slope, guide this search. Returns the better of `at`
+/// and what it finds.
+template <typename Target>
+ShapeIterate searchAlongRim(const Target& target, const DiskInShape& disk, const ShapeIterate& at) {
+  const double theta0 = std::atan2(at.s.y(), at.s.x());
+  auto at_angle = [&](double theta) {
+    return evaluateAt(target, disk, Vec2(disk.r * std::cos(theta), disk.r * std::sin(theta)));
+  };
+  ShapeIterate best = at;
+  // Bracket: walk from theta0 in the direction psi decreases until it rises.
+  double direction = 0.0, step = kShapeFirstRimStep;
+  for (const double side : {1.0, -1.0}) {
+    const ShapeIterate probe = at_angle(theta0 + side * step);
+    if (probe.psi < best.psi) {
+      direction = side;
+      best = probe;
+      break;
+    }
+  }
+  double lo = theta0 - step, hi = theta0 + step;  // psi rises on both sides of theta0
+  if (direction != 0.0) {
+    double previous = theta0, current = theta0 + direction * step;
+    for (step *= kShapeRimStepGrowth; step <= 3.141592653589793; step *= kShapeRimStepGrowth) {
+      const ShapeIterate next = at_angle(theta0 + direction * step);
+      if (!(next.psi < best.psi)) {
+        lo = std::min(previous, theta0 + direction * step);
+        hi = std::max(previous, theta0 + direction * step);
+        break;
+      }
+      previous = current, current = theta0 + direction * step, best = next;
+    }
+  }
+  // Golden section on [lo, hi] around the best point.
+  const double ratio = 0.6180339887498949;
+  double a = lo, b = hi;
+  double x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
+  ShapeIterate f1 = at_angle(x1), f2 = at_angle(x2);
+  for (int k = 0; k < kShapeRimSearchSteps && b - a > 0.0; ++k) {
+    if (f1.psi <= f2.psi) {
+      if (f1.psi < best.psi) best = f1;
+      b = x2, x2 = x1, f2 = f1;
+      x1 = b - ratio * (b - a);
+      f1 = at_angle(x1);
+    } else {
+      if (f2.psi < best.psi) best = f2;
+      a = x1, x1 = x2, f1 = f2;
+      x2 = a + ratio * (b - a);
+      f2 = at_angle(x2);
+    }
+  }
+  if (f1.psi < best.psi) best = f1;
+  if (f2.psi < best.psi) best = f2;
+  return best;
+}
+
+/// Rounds of searchInside (each along the flat then the steep direction).
+constexpr int kShapeInsideSearchRounds = 3;
+
+/// Golden-section minimum of psi along the chord of the disk through s in the
+/// unit direction v; returns the better of `at` and what it finds.
+template <typename Target>
+ShapeIterate searchAlongChord(const Target& target, const DiskInShape& disk, const ShapeIterate& at,
+                              const Vec2& v) {
+  // s + t v stays in the disk for t in [-b - root, -b + root], b = s.v.
+  const double b = at.s.dot(v);
+  const double root = std::sqrt(std::max(0.0, b * b - (at.s.squaredNorm() - disk.r * disk.r)));
+  double lo = -b - root, hi = -b + root;
+  auto at_t = [&](double t) { return evaluateAt(target, disk, disk.nearest(disk.point(at.s + t * v))); };
+  const double ratio = 0.6180339887498949;
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
+  ShapeIterate f1 = at_t(x1), f2 = at_t(x2);
+  ShapeIterate best = at;
+  for (int k = 0; k < kShapeRimSearchSteps && hi - lo > 0.0; ++k) {
+    if (f1.psi <= f2.psi) {
+      if (f1.psi < best.psi) best = f1;
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - ratio * (hi - lo);
+      f1 = at_t(x1);
+    } else {
+      if (f2.psi < best.psi) best = f2;
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + ratio * (hi - lo);
+      f2 = at_t(x2);
+    }
+  }
+  if (f1.psi < best.psi) best = f1;
+  if (f2.psi < best.psi) best = f2;
+  return best;
+}
+
+/// The interior counterpart of searchAlongRim: where X's curved feature barely
+/// meets or misses the disk's face (a cylinder's cap rim dipping through the
+/// plane next to the rim), psi is flat to fourth order along the feature and
+/// Newton stalls once its gradient is rounding. psi is convex, so searching by
+/// values along the chords through the iterate in the directions of psi's
+/// Hessian (the flat one first) moves down the valley; a few rounds suffice.
+template <typename Target>
+ShapeIterate searchInside(const Target& target, const DiskInShape& disk, ShapeIterate at) {
+  for (int round = 0; round < kShapeInsideSearchRounds && at.psi > 0.0; ++round) {
+    const Mat2 H = planarHessian(at.hessian3, disk);
+    const double half_difference = 0.5 * (H(0, 0) - H(1, 1));
+    const double spread = std::sqrt(half_difference * half_difference + H(0, 1) * H(0, 1));
+    Vec2 steep = half_difference >= 0.0 ? Vec2(half_difference + spread, H(0, 1))
+                                        : Vec2(H(0, 1), spread - half_difference);
+    const double length = steep.norm();
+    steep = length > 0.0 ? Vec2(steep / length) : Vec2(1.0, 0.0);
+    at = searchAlongChord(target, disk, at, Vec2(-steep.y(), steep.x()));
+    at = searchAlongChord(target, disk, at, steep);
+  }
+  return at;
+}
+
+/// The face case, in closed form: when X + B_rho lies wholly on one side of the
+/// disk's plane and its point lowest towards the plane, sigma = support(-w) -
+/// rho w for w = +-n, has its foot on the plane inside the disk, that foot and
+/// sigma are an optimal pair: their distance is sigma's height over the plane,
+/// which is also the certificate g(w) (docs/disk_shape_distance.md, section 3).
+/// A foot outside the rim by at most `slack` (rounding: the optimum is then on
+/// the rim) is clamped onto it, which lengthens the pair by at most `slack`; a
+/// height within `slack` of 0 (touching) makes the foot a common point, and so
+/// does a foot that lies in X where X crosses the plane. The
+/// iteration would find these pairs too, but where X's lowest feature is curved
+/// (a cylinder's cap rim, a cone's base rim) psi grows only like the fourth
+/// power of the offset from the foot, and its gradient sinks below rounding
+/// before the distance is within 1e-12 of the scene.
+template <typename Target>
+bool faceCase(const Target& target, const DiskInShape& disk, double rho, double slack,
+              DiskShapeSolution* solution) {
+  for (const double side : {1.0, -1.0}) {
+    const Vec3 w = side * disk.n;
+    const Vec3 lowest = target.support(-w);
+    const double height = w.dot(lowest - disk.c) - rho;
+    if (!(height > -slack) && side > 0.0) continue;  // X reaches below: try the other side
+    Vec2 foot = disk.inPlane(lowest - disk.c);
+    const double foot_radius = foot.norm();
+    if (!(foot_radius <= disk.r + slack)) continue;
+    if (foot_radius > disk.r) foot *= disk.r / foot_radius;
+    solution->p = disk.point(foot);
+    solution->iterations = 0;
+    if (!(height > -slack)) {
+      // X crosses the plane, its lowest point under the disk: the foot is a
+      // common point when it lies in X (it does when X dips just below the
+      // plane there, where psi is flattest); otherwise the iteration decides.
+      const Vec3 q = target.project(solution->p).q;
+      if (!((solution->p - q).norm() <= rho + slack)) continue;
+      solution->q = solution->p;
+      solution->distance = solution->lower_bound = 0.0;
+      solution->intersecting = true;
+      return true;
+    }
+    if (height <= 0.0) {  // touching, to rounding: the foot is a common point
+      solution->q = solution->p;
+      solution->distance = solution->lower_bound = 0.0;
+      solution->intersecting = true;
+    } else {
+      solution->q = lowest - rho * w;
+      solution->distance = (solution->q - solution->p).norm();
+      solution->lower_bound = height;
+      solution->intersecting = false;
+    }
+    return true;
+  }
+  return false;
+}
+
 /// Minimises psi(s) = dist(x(s), X)^2 / 2 over the disk |s| <= r by the feasible
 /// Newton iteration of docs/disk_shape_distance.md section 3 and certifies the
 /// answer; the result is for X inflated by rho (>= 0). `scale` sets every
@@ -365,6 +547,8 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
   const double r = disk.r;
   const double gap_tolerance = kShapeGapTolerance * scale;
   const double touching = kShapeTouchingTolerance * scale;
+  DiskShapeSolution face;
+  if (faceCase(target, disk, rho, touching, &face)) return face;
   // Start: kStartProjections alternating projections from the disk's centre.
   Vec2 start = disk.nearest(target.project(disk.c).q);
   for (int k = 1; k < kStartProjections; ++k) {
@@ -375,6 +559,16 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
 
   // The answer at the current iterate, with its certificate `lower` (for X + B_rho).
   auto finish = [&](int iteration, double lower) {
+    // Still open: search by values, along the rim or inside the disk.
+    if (std::sqrt(2.0 * at.psi) - rho - lower > kShapeFallbackGap * scale) {
+      const double psi_before = at.psi;
+      at = at.s.norm() >= r * (1.0 - kShapeOnRim) ? searchAlongRim(target, disk, at)
+                                                 : searchInside(target, disk, at);
+      if (at.psi < psi_before) {
+        lower = std::max(lower, certificateAt(target, disk, rho, at, std::sqrt(2.0 * at.psi) - rho,
+                                              gap_tolerance, scale, /*returned=*/true));
+      }
+    }
     const double core_distance = std::sqrt(2.0 * at.psi);
     solution.iterations = iteration;
     solution.p = at.x;
