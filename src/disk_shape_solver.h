@@ -130,10 +130,9 @@ constexpr double kShapeTouchingTolerance = kTouchingTolerance;
 /// carry a few ulps of scale each.
 constexpr double kShapeGradientRounding = 8 * std::numeric_limits<double>::epsilon();
 /// The start: this many alternating projections (disk point nearest X's point
-/// nearest the disk point), from the disk's centre. Each costs a projection,
-/// far less than a Newton iteration; two cut the Newton iterations on random
-/// disk-box pairs from 2.55 to 2.3 on average (docs/disk_shape_distance.md,
-/// section 3), more gain less than they cost.
+/// nearest the disk point), from the disk's centre. Each costs one projection,
+/// less than the share of a Newton iteration it saves on random pairs; a third
+/// saved less than it cost (docs/disk_shape_distance.md, section 3).
 constexpr int kStartProjections = 2;
 /// Iteration cap. Converged pairs need 1-6 (Newton on a piecewise quadratic or
 /// smooth psi); the cap only bounds the work on flat, degenerate optima, whose
