@@ -1,0 +1,271 @@
+// Properties of diskShapeDistance() / diskShapeIntersect() and of fcl::distance /
+// fcl::collide on a Disk against every FCL primitive, on 1e5 random poses per
+// pair type in double and in float (half of them scaled by 10^x, x in
+// [-6, 6]): the disk point on the disk and the shape point on the shape (long
+// double distances of test/disk_shape_oracle.h), |p - q| == distance,
+// lower_bound <= distance with the certified gap closed in double, the same
+// answer with the arguments swapped through fcl::distance and after a common
+// rigid motion of both poses, and collide agreeing with the distance outside
+// the touching band, with its contact on both shapes and a normal whose
+// translation by the depth separates them.
+#include <fcl_disk/fcl_disk.h>
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <type_traits>
+
+#include "disk_shape_oracle.h"
+#include "test_random.h"
+
+namespace {
+
+using namespace fcl_disk_test::oracle;
+using fcl_disk_test::Random;
+
+constexpr int kPosesPerPair = 100000;
+/// Every 50th pose also goes through fcl::distance / fcl::collide both ways and
+/// a rigid motion (the hook's answers equal diskShapeDistance bit for bit,
+/// test_hook checks; this checks the symmetries of the answer).
+constexpr int kSymmetryEvery = 50;
+
+template <typename S>
+struct Tolerance {
+  static constexpr bool kFloat = std::is_same<S, float>::value;
+  /// Points on their shapes, |p - q| vs distance: the header's 1e-12 of the scene
+  /// in double; in float the answer is rounded to float (1/2 ulp per coordinate)
+  /// and the poses are float: 16 ulps of the scene.
+  static constexpr double kRelative = kFloat ? 16 * 1.1920928955078125e-07 : 1e-12;
+  /// Swap and rigid motion: the moved pose is rounded to S (centres by ~ulp of
+  /// the scene, rotations by ~eps), and the distance is 1-Lipschitz in such
+  /// moves: 8 ulps of S of the scene, plus the solver's bound twice.
+  static constexpr double kMotionRelative =
+      8 * double(std::numeric_limits<S>::epsilon()) + 2 * kRelative;
+  /// The certified gap the header promises on converged answers (double).
+  static constexpr double kGapRelative = kFloat ? 1.0 : 1e-12;
+};
+
+Shape randomShape(Kind kind, Random& random) {
+  Shape s;
+  s.kind = kind;
+  auto length = [&] { return Real(random.uniform(0.05, 0.6)); };
+  switch (kind) {
+    case Kind::sphere: s.dims = V3(length(), 0, 0); break;
+    case Kind::box: s.dims = V3(length(), length(), length()); break;
+    case Kind::capsule:
+    case Kind::cylinder:
+    case Kind::cone: s.dims = V3(length(), length(), 0); break;
+    case Kind::ellipsoid: s.dims = V3(length(), length(), length()); break;
+    case Kind::convex: {
+      // A random box-like frustum: a rectangle base and a smaller top.
+      const Real a = length(), b = length(), h = length(), shrink = Real(random.uniform(0.2, 1.0));
+      s.vertices = {V3(-a, -b, -h), V3(a, -b, -h), V3(a, b, -h), V3(-a, b, -h),
+                    V3(-a * shrink, -b * shrink, h), V3(a * shrink, -b * shrink, h),
+                    V3(a * shrink, b * shrink, h), V3(-a * shrink, b * shrink, h)};
+      s.faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+      break;
+    }
+    case Kind::halfspace:
+    case Kind::plane:
+      s.n = random.unitVector().cast<Real>();
+      s.d = Real(random.uniform(-0.3, 0.3));
+      break;
+    case Kind::triangle:
+      for (int i = 0; i < 3; ++i) s.vertices.push_back(random.inBall(0.6).cast<Real>());
+      break;
+  }
+  return s;
+}
+
+Shape scaledShape(Shape s, Real k) {
+  s.dims *= k;
+  for (V3& v : s.vertices) v *= k;
+  s.d *= k;
+  return s;
+}
+
+template <typename S>
+std::shared_ptr<fcl::ShapeBase<S>> toFcl(const Shape& s) {
+  const auto v = [](const V3& x) { return fcl::Vector3<S>(S(x.x()), S(x.y()), S(x.z())); };
+  switch (s.kind) {
+    case Kind::sphere: return std::make_shared<fcl::Sphere<S>>(S(s.dims.x()));
+    case Kind::box:
+      return std::make_shared<fcl::Box<S>>(S(2 * s.dims.x()), S(2 * s.dims.y()), S(2 * s.dims.z()));
+    case Kind::capsule: return std::make_shared<fcl::Capsule<S>>(S(s.dims.x()), S(2 * s.dims.y()));
+    case Kind::cylinder: return std::make_shared<fcl::Cylinder<S>>(S(s.dims.x()), S(2 * s.dims.y()));
+    case Kind::cone: return std::make_shared<fcl::Cone<S>>(S(s.dims.x()), S(2 * s.dims.y()));
+    case Kind::ellipsoid:
+      return std::make_shared<fcl::Ellipsoid<S>>(S(s.dims.x()), S(s.dims.y()), S(s.dims.z()));
+    case Kind::convex: {
+      auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+      for (const V3& x : s.vertices) vertices->push_back(v(x));
+      auto faces = std::make_shared<std::vector<int>>();
+      for (const auto& face : s.faces) {
+        faces->push_back(int(face.size()));
+        faces->insert(faces->end(), face.begin(), face.end());
+      }
+      return std::make_shared<fcl::Convex<S>>(vertices, int(s.faces.size()), faces);
+    }
+    case Kind::halfspace: return std::make_shared<fcl::Halfspace<S>>(v(s.n), S(s.d));
+    case Kind::plane: return std::make_shared<fcl::Plane<S>>(v(s.n), S(s.d));
+    case Kind::triangle:
+      return std::make_shared<fcl::TriangleP<S>>(v(s.vertices[0]), v(s.vertices[1]),
+                                                 v(s.vertices[2]));
+  }
+  return nullptr;
+}
+
+/// The shape as stored in S (an fcl::Halfspace / Plane normalises its normal).
+template <typename S>
+Shape asStored(Shape s, const fcl::ShapeBase<S>& stored) {
+  for (int i = 0; i < 3; ++i) s.dims[i] = Real(S(s.dims[i]));
+  for (V3& v : s.vertices) v = v.cast<S>().template cast<Real>();
+  if (s.kind == Kind::halfspace) {
+    const auto& h = static_cast<const fcl::Halfspace<S>&>(stored);
+    s.n = h.n.template cast<Real>();
+    s.d = Real(h.d);
+  } else if (s.kind == Kind::plane) {
+    const auto& p = static_cast<const fcl::Plane<S>&>(stored);
+    s.n = p.n.template cast<Real>();
+    s.d = Real(p.d);
+  }
+  return s;
+}
+
+template <typename S>
+struct Answer {
+  S distance, lower_bound;
+  fcl::Vector3<S> p, q;
+};
+
+template <typename S>
+Answer<S> direct(S r, const fcl::Transform3<S>& X_WD, const fcl::ShapeBase<S>& shape,
+                 const fcl::Transform3<S>& X_WS) {
+  auto pack = [](const auto& a) { return Answer<S>{a.distance, a.lower_bound, a.p_W_disk, a.p_W_shape}; };
+  switch (shape.getNodeType()) {
+    case fcl::GEOM_SPHERE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Sphere<S>&>(shape), X_WS));
+    case fcl::GEOM_BOX: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Box<S>&>(shape), X_WS));
+    case fcl::GEOM_CAPSULE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Capsule<S>&>(shape), X_WS));
+    case fcl::GEOM_CYLINDER: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Cylinder<S>&>(shape), X_WS));
+    case fcl::GEOM_CONE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Cone<S>&>(shape), X_WS));
+    case fcl::GEOM_ELLIPSOID: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Ellipsoid<S>&>(shape), X_WS));
+    case fcl::GEOM_CONVEX: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Convex<S>&>(shape), X_WS));
+    case fcl::GEOM_HALFSPACE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Halfspace<S>&>(shape), X_WS));
+    case fcl::GEOM_PLANE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Plane<S>&>(shape), X_WS));
+    case fcl::GEOM_TRIANGLE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::TriangleP<S>&>(shape), X_WS));
+    default: break;
+  }
+  ADD_FAILURE() << "no pair";
+  return {};
+}
+
+template <typename S>
+fcl::Transform3<S> randomPose(Random& random, double spread) {
+  fcl::Transform3<double> X = fcl::Transform3<double>::Identity();
+  X.linear() = random.rotation();
+  X.translation() = random.inBall(spread);
+  return X.template cast<S>();
+}
+
+template <typename S>
+void checkPair(Kind kind) {
+  using T = Tolerance<S>;
+  Random random(7919 * (int(kind) + 1) + (std::is_same<S, float>::value ? 1 : 0));
+  int separated = 0, intersecting = 0;
+  for (int i = 0; i < kPosesPerPair; ++i) {
+    const Real k = random.chance(0.5) ? std::pow(Real(10), Real(random.uniform(-6, 6))) : Real(1);
+    const Shape wanted = scaledShape(randomShape(kind, random), k);
+    const auto fcl_shape = toFcl<S>(wanted);
+    const Shape shape = asStored<S>(wanted, *fcl_shape);
+    const S r = S(random.uniform(0.05, 0.8) * double(k));
+    fcl::Transform3<S> X_WD = randomPose<S>(random, double(k)), X_WS = randomPose<S>(random, double(k));
+    const Answer<S> a = direct(r, X_WD, *fcl_shape, X_WS);
+
+    const Disk disk{X_WD.translation().template cast<Real>(), X_WD.linear().col(0).template cast<Real>(),
+                    X_WD.linear().col(1).template cast<Real>(), Real(r)};
+    Pose X;
+    X.R = X_WS.linear().template cast<Real>();
+    X.t = X_WS.translation().template cast<Real>();
+    const bool boundary = kind == Kind::halfspace || kind == Kind::plane;
+    const double scale = double(disk.r + shape.boundingRadius() +
+                                (boundary ? std::abs((X.R * shape.n).dot(disk.c - X.t) - shape.d)
+                                          : (disk.c - X.t).norm()));
+    const double tolerance = T::kRelative * scale;
+    std::ostringstream what;
+    what.precision(17);
+    what << kindName(kind) << " pose " << i << " r " << r << "\nX_WD\n" << X_WD.matrix() << "\nX_WS\n"
+         << X_WS.matrix() << "\ndistance " << a.distance << " lower " << a.lower_bound;
+    const V3 p = a.p.template cast<Real>(), q = a.q.template cast<Real>();
+    ASSERT_TRUE(std::isfinite(double(a.distance))) << what.str();
+    ASSERT_LE(double(pointToDisk(disk, p)), tolerance) << "disk point off the disk\n" << what.str();
+    ASSERT_LE(double(pointDistanceWorld(shape, X, q)), tolerance) << "shape point off the shape\n" << what.str();
+    ASSERT_LE(std::abs(double((p - q).norm()) - double(a.distance)), 2 * tolerance) << what.str();
+    ASSERT_LE(double(a.lower_bound), double(a.distance)) << what.str();
+    ASSERT_LE(double(a.distance - a.lower_bound), T::kGapRelative * scale) << what.str();
+    (a.distance > 0 ? separated : intersecting)++;
+
+    if (i % kSymmetryEvery != 0) continue;
+    // Both argument orders through fcl::distance.
+    fcl::CollisionObject<S> disk_object(std::make_shared<fcl_disk::Disk<S>>(r), X_WD);
+    fcl::CollisionObject<S> shape_object(fcl_shape, X_WS);
+    fcl::DistanceRequest<S> request;
+    fcl::DistanceResult<S> disk_first, shape_first;
+    fcl::distance(&disk_object, &shape_object, request, disk_first);
+    fcl::distance(&shape_object, &disk_object, request, shape_first);
+    ASSERT_EQ(disk_first.min_distance, a.distance) << what.str();
+    ASSERT_EQ(shape_first.min_distance, a.distance) << what.str();
+    ASSERT_EQ(shape_first.nearest_points[0], a.q) << what.str();
+    ASSERT_EQ(shape_first.nearest_points[1], a.p) << what.str();
+    // A common rigid motion of both poses.
+    const fcl::Transform3<S> M = randomPose<S>(random, 3.0 * double(k));
+    const Answer<S> moved = direct(r, fcl::Transform3<S>(M * X_WD), *fcl_shape, fcl::Transform3<S>(M * X_WS));
+    ASSERT_LE(std::abs(double(moved.distance) - double(a.distance)), T::kMotionRelative * (scale + 3 * double(k)))
+        << what.str();
+    // Collision agrees with the distance outside the touching band; its contact
+    // is on both shapes and the translation by the depth separates them.
+    fcl::CollisionRequest<S> collision_request;
+    collision_request.enable_contact = true;
+    fcl::CollisionResult<S> collision;
+    fcl::collide(&disk_object, &shape_object, collision_request, collision);
+    if (double(a.distance) > 1e3 * tolerance) {
+      ASSERT_FALSE(collision.isCollision()) << what.str();
+    } else if (a.distance == 0) {
+      ASSERT_TRUE(collision.isCollision()) << what.str();
+      const auto& contact = collision.getContact(0);
+      const V3 pos = contact.pos.template cast<Real>();
+      ASSERT_LE(double(pointToDisk(disk, pos)), 1e3 * tolerance) << what.str();
+      ASSERT_LE(double(pointDistanceWorld(shape, X, pos)), 1e3 * tolerance) << what.str();
+      ASSERT_NEAR(double(contact.normal.norm()), 1.0, 1e-5) << what.str();
+      if (!boundary) {  // a halfspace or plane moved stays unbounded; its depth is exact
+        fcl::Transform3<S> X_moved = X_WS;
+        X_moved.translation() += (contact.penetration_depth + S(1e-6 * scale)) * contact.normal;
+        ASSERT_GT(double(direct(r, X_WD, *fcl_shape, X_moved).distance), 0.0) << what.str();
+      }
+    }
+  }
+  EXPECT_GT(separated, kPosesPerPair / 10) << kindName(kind);
+  std::cout << kindName(kind) << (std::is_same<S, float>::value ? " float" : " double") << ": "
+            << separated << " separated, " << intersecting << " intersecting\n";
+}
+
+class DiskShapeProperties : public ::testing::TestWithParam<Kind> {};
+
+TEST_P(DiskShapeProperties, Double) { checkPair<double>(GetParam()); }
+TEST_P(DiskShapeProperties, Float) { checkPair<float>(GetParam()); }
+
+INSTANTIATE_TEST_SUITE_P(EveryPrimitive, DiskShapeProperties,
+                         ::testing::Values(Kind::sphere, Kind::box, Kind::capsule, Kind::cylinder,
+                                           Kind::cone, Kind::ellipsoid, Kind::convex,
+                                           Kind::halfspace, Kind::plane, Kind::triangle),
+                         [](const ::testing::TestParamInfo<Kind>& info) {
+                           return std::string(kindName(info.param));
+                         });
+
+}  // namespace
