@@ -571,7 +571,9 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     const double core_distance = std::sqrt(2.0 * at.psi);
     solution.iterations = iteration;
     solution.p = at.x;
-    if (core_distance <= rho) {  // x lies in X + B_rho: a common point
+    // x lies in X + B_rho, or within the touching tolerance of it (a pair built
+    // touching in one frame touches only to rounding in another): a common point.
+    if (core_distance <= rho + touching) {
       solution.q = at.x;
       solution.intersecting = true;
       return solution;

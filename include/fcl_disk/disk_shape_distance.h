@@ -59,7 +59,10 @@ struct DiskShapeDistanceResult {
 /// Float: inputs are promoted to double and results rounded to float.
 ///
 /// Overlap: distance 0, p_W_disk == p_W_shape == a point of both shapes
-/// (unsigned and signed alike; penetration depth is not computed here).
+/// (unsigned and signed alike; penetration depth is not computed here). Sets
+/// closer than 1e-13 * scale count as touching (a pair built touching in one
+/// frame touches only to rounding in another): distance 0, the disk's point as
+/// the common point, as diskShapeIntersect() decides.
 /// Ties (parallel faces, a segment parallel to the disk): the pair the
 /// iteration reaches, deterministic for a given input.
 ///

@@ -1,0 +1,219 @@
+// Hand-made cases for a disk against FCL's primitives: values derived by hand
+// (each commented), degenerate shapes answered as the sets they are, and the
+// bad-input policy (NaN in, NaN out; no contact; never a crash), through
+// diskShapeDistance / diskShapeIntersect and through fcl::distance / collide.
+#include <fcl_disk/fcl_disk.h>
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <vector>
+
+namespace {
+
+using Transform3d = fcl::Transform3<double>;
+using Vector3d = Eigen::Vector3d;
+
+/// Hand-derived values are exact; the solver is good to 1e-12 of the scene
+/// (scenes here are of size ~1-3).
+constexpr double kExact = 1e-12;
+
+Transform3d at(const Vector3d& centre, const Vector3d& normal = Vector3d::UnitZ()) {
+  Transform3d X = Transform3d::Identity();
+  X.linear() = Eigen::Quaterniond::FromTwoVectors(Vector3d::UnitZ(), normal.normalized())
+                   .toRotationMatrix();
+  X.translation() = centre;
+  return X;
+}
+
+const Transform3d kIdentity = Transform3d::Identity();
+
+TEST(DiskShapeCases, HandDerivedDistances) {
+  // Disk r = 1 at the origin, normal +z.
+  // Box 1 x 1 x 1 centred at (0.2, 0.1, 1.5): its bottom face (z = 1) over the
+  // disk's face: 1.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(1, 1, 1),
+                                          at({0.2, 0.1, 1.5})).distance, 1.0, kExact);
+  // Box beside the rim: centred at (2, 0, 0), faces at x = 1.5: rim point (1, 0, 0): 0.5.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(1, 1, 1),
+                                          at({2, 0, 0})).distance, 0.5, kExact);
+  // Box edge against the rim: a unit box turned 45 degrees about z, centred at
+  // (1 + sqrt(2)/2 + 0.25, 0, 0): its vertical edge at x = 1.25, the rim at x = 1: 0.25.
+  {
+    Transform3d X = Transform3d::Identity();
+    X.linear() = Eigen::AngleAxisd(M_PI / 4, Vector3d::UnitZ()).toRotationMatrix();
+    X.translation() << 1 + std::sqrt(0.5) + 0.25, 0, 0;
+    EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(1, 1, 1), X).distance,
+                0.25, kExact);
+  }
+  // Sphere rho = 0.5 above the rim at (1.3, 0, 0.4): nearest disk point (1, 0, 0),
+  // |(0.3, 0, 0.4)| = 0.5: touching, 0.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Sphere<double>(0.5),
+                                          at({1.3, 0, 0.4})).distance, 0.0, kExact);
+  // Capsule rho = 0.1, lz = 2, parallel to the disk at height 0.6 (axis along x):
+  // 0.6 - 0.1 = 0.5.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Capsule<double>(0.1, 2.0),
+                                          at({0, 0, 0.6}, Vector3d::UnitX())).distance, 0.5, kExact);
+  // Cylinder r = 0.5, lz = 1 coaxial above at centre height 2: bottom cap at z = 1.5.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Cylinder<double>(0.5, 1.0),
+                                          at({0, 0, 2})).distance, 1.5, kExact);
+  // Cone r = 0.5, lz = 1 upside down (apex at -z of its frame... flipped): apex
+  // at z = 0.3 over the disk centre: 0.3.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Cone<double>(0.5, 1.0),
+                                          at({0, 0, 0.8}, -Vector3d::UnitZ())).distance, 0.3, kExact);
+  // Ellipsoid a = b = c = 0.5 is the sphere: centred at (0, 0, 1): 0.5.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 0.5),
+                                          at({0, 0, 1})).distance, 0.5, kExact);
+  // Ellipsoid semi-axes (2, 0.5, 0.5) lying along x at (0, 0, 1): its lowest point
+  // (0, 0, 0.5) over the centre: 0.5.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(2, 0.5, 0.5),
+                                          at({0, 0, 1})).distance, 0.5, kExact);
+  // Triangle crossing the disk: vertices above and below its face: 0.
+  EXPECT_EQ(fcl_disk::diskShapeDistance(1.0, kIdentity,
+                                        fcl::TriangleP<double>(Vector3d(0, 0, -1), Vector3d(0.5, 0, 1),
+                                                               Vector3d(-0.5, 0.2, 1)),
+                                        kIdentity).distance, 0.0);
+  // Disk inside a box: 0, and collide reports it.
+  EXPECT_EQ(fcl_disk::diskShapeDistance(0.2, kIdentity, fcl::Box<double>(1, 1, 1), kIdentity).distance,
+            0.0);
+  EXPECT_TRUE(fcl_disk::diskShapeIntersect(0.2, kIdentity, fcl::Box<double>(1, 1, 1), kIdentity));
+  // Halfspace z <= -0.5 under a disk tilted by 30 degrees: lowest point at
+  // height -sin(30) = -0.5: touching, 0; at z <= -0.7: 0.2.
+  const Transform3d tilted = at({0, 0, 0}, Vector3d(0, std::sin(M_PI / 6), std::cos(M_PI / 6)));
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, tilted,
+                                          fcl::Halfspace<double>(Vector3d::UnitZ(), -0.7), kIdentity)
+                  .distance, 0.2, kExact);
+  // Plane z = 0.2 parallel to the disk: 0.2; z = 0.2 crossing the tilted disk: 0.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Plane<double>(Vector3d::UnitZ(), 0.2),
+                                          kIdentity).distance, 0.2, kExact);
+  EXPECT_EQ(fcl_disk::diskShapeDistance(1.0, tilted, fcl::Plane<double>(Vector3d::UnitZ(), 0.2),
+                                        kIdentity).distance, 0.0);
+}
+
+TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
+  const Transform3d above = at({0.3, 0.2, 0.8});
+  // A zero-size box and a zero-radius sphere are the point (0.3, 0.2, 0.8): 0.8.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(0, 0, 0), above).distance,
+              0.8, kExact);
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Sphere<double>(0), above).distance, 0.8,
+              kExact);
+  // A zero-length capsule is a sphere; a zero-length cylinder a disk of its radius.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Capsule<double>(0.3, 0), above).distance,
+              0.5, kExact);
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Cylinder<double>(0.3, 0), above).distance,
+              0.8, kExact);
+  // An ellipsoid with a zero semi-axis is an ellipse: (0.5, 0.5, 0) lying flat at 0.8.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 0), above)
+                  .distance, 0.8, kExact);
+  // A zero-area triangle is its segment: from (2, 0, 0) to (3, 0, 0) (the third
+  // vertex on it): 1 from the rim.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity,
+                                          fcl::TriangleP<double>(Vector3d(2, 0, 0), Vector3d(3, 0, 0),
+                                                                 Vector3d(2.5, 0, 0)),
+                                          kIdentity).distance, 1.0, kExact);
+  // A flat Convex: the unit square at z = 0.5 given as its two faces, over the
+  // disk's face: 0.5; beside the disk in its plane, x in [2, 3]: 1.
+  auto square = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
+      {-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, 0}});
+  auto faces = std::make_shared<std::vector<int>>(std::vector<int>{4, 0, 1, 2, 3, 4, 3, 2, 1, 0});
+  const fcl::Convex<double> flat(square, 2, faces);
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, flat, at({0, 0, 0.5})).distance, 0.5, kExact);
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, flat, at({2.5, 0, 0})).distance, 1.0, kExact);
+  EXPECT_FALSE(fcl_disk::diskShapeIntersect(1.0, kIdentity, flat, at({2.5, 0, 0})));
+  EXPECT_TRUE(fcl_disk::diskShapeIntersect(1.0, kIdentity, flat, at({1.2, 0, 0})));
+}
+
+TEST(DiskShapeCases, BadInputGivesNaNAndNoContact) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Transform3d nan_pose = kIdentity;
+  nan_pose.translation().x() = nan;
+  Transform3d sheared = kIdentity;
+  sheared.linear()(0, 1) = 0.3;
+  fcl::Box<double> box(1, 1, 1);
+  const auto expect_nan = [](const fcl_disk::DiskShapeDistanceResult<double>& r) {
+    EXPECT_TRUE(std::isnan(r.distance));
+    EXPECT_TRUE(std::isnan(r.lower_bound));
+    EXPECT_TRUE(r.p_W_disk.array().isNaN().all());
+    EXPECT_TRUE(r.p_W_shape.array().isNaN().all());
+  };
+  expect_nan(fcl_disk::diskShapeDistance(1.0, nan_pose, box, kIdentity));
+  expect_nan(fcl_disk::diskShapeDistance(1.0, kIdentity, box, nan_pose));
+  expect_nan(fcl_disk::diskShapeDistance(1.0, sheared, box, kIdentity));
+  expect_nan(fcl_disk::diskShapeDistance(1.0, kIdentity, box, sheared));
+  expect_nan(fcl_disk::diskShapeDistance(nan, kIdentity, box, kIdentity));
+  fcl::Box<double> nan_box(1, 1, 1);
+  nan_box.side.x() = nan;
+  expect_nan(fcl_disk::diskShapeDistance(1.0, kIdentity, nan_box, kIdentity));
+  expect_nan(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Sphere<double>(-1), kIdentity));
+  fcl::Halfspace<double> zero_normal(Vector3d::UnitZ(), 0);
+  zero_normal.n.setZero();
+  expect_nan(fcl_disk::diskShapeDistance(1.0, kIdentity, zero_normal, kIdentity));
+  auto vertices = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{{0, 0, 0}, {1, 0, 0}});
+  auto bad_faces = std::make_shared<std::vector<int>>(std::vector<int>{3, 0, 1, 7});
+  expect_nan(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Convex<double>(vertices, 1, bad_faces),
+                                         kIdentity));
+  EXPECT_FALSE(fcl_disk::diskShapeIntersect(1.0, nan_pose, box, kIdentity));
+  EXPECT_FALSE(fcl_disk::diskShapeIntersect(1.0, kIdentity, nan_box, kIdentity));
+
+  // Through FCL, both solvers, both orders: NaN distance, no contact, no abort
+  // (Debian's FCL asserts in GJK on NaN).
+  auto disk = std::make_shared<fcl_disk::Diskd>(1.0);
+  auto shape = std::make_shared<fcl::Boxd>(1, 1, 1);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    fcl::CollisionObjectd a(disk, kIdentity), b(shape, nan_pose);
+    fcl::DistanceRequestd request;
+    request.gjk_solver_type = solver;
+    fcl::DistanceResultd ab, ba;
+    fcl::distance(&a, &b, request, ab);
+    fcl::distance(&b, &a, request, ba);
+    EXPECT_TRUE(std::isnan(ab.min_distance));
+    EXPECT_TRUE(std::isnan(ba.min_distance));
+    fcl::CollisionRequestd collision_request;
+    collision_request.gjk_solver_type = solver;
+    fcl::CollisionResultd collision;
+    fcl::collide(&a, &b, collision_request, collision);
+    EXPECT_FALSE(collision.isCollision());
+  }
+}
+
+TEST(DiskShapeCases, GroundHalfspaceAndPlaneThroughFcl) {
+  // FCL's own GJK crashes on a flat cylinder against a Halfspace with libccd and
+  // answers wrongly with indep; a Disk gets the closed form with both.
+  auto disk = std::make_shared<fcl_disk::Diskd>(0.5);
+  auto ground = std::make_shared<fcl::Halfspaced>(Vector3d::UnitZ(), 0.0);
+  auto plane = std::make_shared<fcl::Planed>(Vector3d::UnitZ(), 0.0);
+  const Transform3d hovering = at({3, 4, 1.0}, Vector3d(1, 0, 1));  // tilted 45 degrees
+  const double lowest = 1.0 - 0.5 * std::sqrt(0.5);                  // its rim's lowest point
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    for (const auto& other : {std::shared_ptr<fcl::CollisionGeometryd>(ground),
+                              std::shared_ptr<fcl::CollisionGeometryd>(plane)}) {
+      fcl::CollisionObjectd a(disk, hovering), b(other, kIdentity);
+      fcl::DistanceRequestd request;
+      request.gjk_solver_type = solver;
+      fcl::DistanceResultd result;
+      EXPECT_NEAR(fcl::distance(&a, &b, request, result), lowest, kExact);
+      EXPECT_NEAR(result.nearest_points[0].z(), lowest, kExact);  // on the disk's rim
+      EXPECT_NEAR(result.nearest_points[1].z(), 0.0, kExact);     // on the ground
+      fcl::CollisionRequestd collision_request;
+      collision_request.gjk_solver_type = solver;
+      collision_request.enable_contact = true;
+      fcl::CollisionResultd collision;
+      fcl::CollisionObjectd sunk(disk, at({0, 0, 0.1}, Vector3d(1, 0, 1)));
+      fcl::collide(&sunk, &b, collision_request, collision);
+      ASSERT_TRUE(collision.isCollision());
+      // The disk's lowest point is 0.5 sqrt(1/2) - 0.1 below the ground.
+      const double depth = 0.5 * std::sqrt(0.5) - 0.1;
+      if (other == ground) {
+        EXPECT_NEAR(collision.getContact(0).penetration_depth, depth, kExact);
+        EXPECT_NEAR(collision.getContact(0).normal.z(), -1.0, kExact);  // from the disk to the ground
+      }
+    }
+  }
+}
+
+}  // namespace
