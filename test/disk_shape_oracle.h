@@ -189,16 +189,26 @@ inline Real pointDistance(const Shape& s, const V3& p) {
       return pointToMeridianTriangle(std::hypot(p.x(), p.y()), p.z(), s.dims.x(), s.dims.y());
     case Kind::ellipsoid: return pointToEllipsoid(p, s.dims);
     case Kind::convex: {
-      bool inside = true;
+      // Outside iff outside some face plane; then the nearest face polygon (only
+      // faces whose plane is nearer than the best so far can be nearer).
+      thread_local std::vector<V3> polygon;
       Real best = std::numeric_limits<Real>::infinity();
+      bool inside = true;
       for (const auto& face : s.faces) {
-        std::vector<V3> polygon;
+        const V3& a = s.vertices[face[0]];
+        const V3 normal = (s.vertices[face[1]] - a).cross(s.vertices[face[2]] - a);
+        if (normal.dot(p - a) > 0) inside = false;
+      }
+      if (inside) return 0;
+      for (const auto& face : s.faces) {
+        const V3& a = s.vertices[face[0]];
+        const V3 normal = (s.vertices[face[1]] - a).cross(s.vertices[face[2]] - a).normalized();
+        if (!(std::abs(normal.dot(p - a)) < best)) continue;
+        polygon.clear();
         for (int index : face) polygon.push_back(s.vertices[index]);
-        const V3 normal = (polygon[1] - polygon[0]).cross(polygon[2] - polygon[0]);
-        if (normal.dot(p - polygon[0]) > 0) inside = false;
         best = std::min(best, pointToPolygon(p, polygon));
       }
-      return inside ? 0 : best;
+      return best;
     }
     case Kind::halfspace: return std::max<Real>(0, s.n.dot(p) - s.d);
     case Kind::plane: return std::abs(s.n.dot(p) - s.d);

@@ -16,61 +16,90 @@ namespace {
 /// (a few eps), far below any real dihedral angle.
 constexpr double kParallelFaceSine = 1e-12;
 
+/// A face of the polytope: where its vertex indices start in FCL's face list,
+/// how many, its outward unit normal (zero for a face of zero area) and the
+/// plane's offset (normal . vertex).
+struct ConvexFace {
+  const int* index;
+  int count;
+  Vec3 unit_normal;
+  double offset;
+};
+
 /// FCL's Convex: vertices, and faces encoded [k, i_1..i_k, k', ...], each listed
-/// counter-clockwise seen from outside. Projection works in the shape frame.
+/// counter-clockwise seen from outside. Projection works in the shape frame. The
+/// face planes are computed once per query (Newell's formula), not per
+/// projection.
 template <typename S>
 struct ConvexTarget {
   const fcl::Convex<S>* convex;
+  std::vector<ConvexFace> faces;
+  int largest_face = -1;  ///< the face of largest area
+  bool flat = true;       ///< every face parallel or of zero area: a polygon
 
-  Vec3 vertex(int index) const { return convex->getVertices()[index].template cast<double>(); }
-
-  /// Calls visit(count, first_index_position, normal) for each face; normal by
-  /// Newell's formula (outward, |normal| = twice the area; zero if degenerate).
-  template <typename Visit>
-  void forEachFace(Visit visit) const {
-    const std::vector<int>& faces = convex->getFaces();
+  explicit ConvexTarget(const fcl::Convex<S>& shape) : convex(&shape) {
+    const std::vector<int>& list = convex->getFaces();
+    faces.reserve(convex->getFaceCount());
     std::size_t at = 0;
+    double largest_area = -1.0;
+    Vec3 first_normal = Vec3::Zero();
     for (int f = 0; f < convex->getFaceCount(); ++f) {
-      const int count = faces[at];
-      const int* index = &faces[at + 1];
-      Vec3 normal = Vec3::Zero();
-      for (int i = 0; i < count; ++i) normal += vertex(index[i]).cross(vertex(index[(i + 1) % count]));
-      visit(count, index, normal);
+      const int count = list[at];
+      const int* index = &list[at + 1];
+      // Newell's normal; for a triangle it is the one cross product (b - a) x (c - a).
+      Vec3 normal;
+      if (count == 3) {
+        const Vec3 a = vertex(index[0]);
+        normal = (vertex(index[1]) - a).cross(vertex(index[2]) - a);
+      } else {
+        normal = vertex(index[count - 1]).cross(vertex(index[0]));
+        for (int i = 0; i + 1 < count; ++i) normal += vertex(index[i]).cross(vertex(index[i + 1]));
+      }
+      const double area = normal.norm();
+      if (area > largest_area) largest_area = area, largest_face = f;
+      if (area > 0.0) {
+        if (first_normal.squaredNorm() == 0.0) first_normal = normal;
+        flat &= first_normal.cross(normal).norm() <= kParallelFaceSine * first_normal.norm() * area;
+      }
+      const Vec3 unit = area > 0.0 ? Vec3(normal / area) : Vec3::Zero();
+      faces.push_back(ConvexFace{index, count, unit, unit.dot(vertex(index[0]))});
       at += count + 1;
     }
   }
 
+  Vec3 vertex(int index) const { return convex->getVertices()[index].template cast<double>(); }
+
+  Projection ontoFace(const Vec3& y, const ConvexFace& face) const {
+    return projectOntoPolygon(y, face.count, [&](int i) { return vertex(face.index[i]); },
+                              face.unit_normal);
+  }
+
+  /// Only faces whose planes have y strictly outside can hold the nearest point,
+  /// and a face's plane distance bounds its polygon's distance from below: the
+  /// face whose plane is farthest first (usually the answer: y's foot on it lies
+  /// inside it), then the others whose plane distance can still beat the best.
   Projection project(const Vec3& y) const {
-    Projection best{y, FactoredHessian()};
-    double best_squared = std::numeric_limits<double>::infinity();
-    bool outside = false;
-    Vec3 first_normal = Vec3::Zero(), largest_normal = Vec3::Zero();
-    const int* largest_face = nullptr;
-    int largest_count = 0;
-    bool flat = true;
-    forEachFace([&](int count, const int* index, const Vec3& normal) {
-      const double area_squared = normal.squaredNorm();
-      if (area_squared > largest_normal.squaredNorm()) {
-        largest_normal = normal, largest_face = index, largest_count = count;
-      }
-      if (area_squared > 0.0) {
-        if (first_normal.squaredNorm() == 0.0) first_normal = normal;
-        flat &= first_normal.cross(normal).norm() <=
-                kParallelFaceSine * first_normal.norm() * normal.norm();
-      }
-      // Only faces whose plane has y strictly outside can hold the nearest point.
-      if (!(normal.dot(y - vertex(index[0])) > 0.0)) return;
-      outside = true;
-      const Projection on_face =
-          projectOntoPolygon(y, count, [&](int i) { return vertex(index[i]); }, normal);
-      const double squared = (y - on_face.q).squaredNorm();
-      if (squared < best_squared) best = on_face, best_squared = squared;
-    });
-    if (!outside && flat && largest_face) {  // on the polygon's plane: the polygon decides
-      best = projectOntoPolygon(y, largest_count, [&](int i) { return vertex(largest_face[i]); },
-                                largest_normal);
-    } else if (!outside) {
-      return Projection{y, FactoredHessian()};
+    int farthest = -1;
+    double farthest_height = 0.0;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const double height = faces[f].unit_normal.dot(y) - faces[f].offset;
+      if (height > farthest_height) farthest_height = height, farthest = int(f);
+    }
+    if (farthest < 0) {
+      // Inside every face plane: inside the solid, or on a flat polytope's plane,
+      // where the polygon decides.
+      if (!flat || largest_face < 0) return Projection{y, FactoredHessian()};
+      return ontoFace(y, faces[largest_face]);
+    }
+    Projection best = ontoFace(y, faces[farthest]);
+    double best_distance = (y - best.q).norm();
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      if (int(f) == farthest) continue;
+      const double height = faces[f].unit_normal.dot(y) - faces[f].offset;
+      if (!(height > 0.0) || !(height < best_distance)) continue;
+      const Projection on_face = ontoFace(y, faces[f]);
+      const double distance = (y - on_face.q).norm();
+      if (distance < best_distance) best = on_face, best_distance = distance;
     }
     return best;
   }
@@ -119,13 +148,11 @@ struct ConvexTraits {
     return std::sqrt(largest);
   }
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
-  static ConvexTarget<S> target(const fcl::Convex<S>& convex) { return ConvexTarget<S>{&convex}; }
+  static ConvexTarget<S> target(const fcl::Convex<S>& convex) { return ConvexTarget<S>(convex); }
   /// The face normals.
   static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target) {
     std::vector<Vec3> normals;
-    target.forEachFace([&](int, const int*, const Vec3& normal) {
-      normals.push_back(normal);
-    });
+    for (const ConvexFace& face : target.faces) normals.push_back(face.unit_normal);
     return normals;
   }
 };

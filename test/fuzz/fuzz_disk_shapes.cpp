@@ -1,0 +1,289 @@
+// libFuzzer target: fcl_disk::diskShapeDistance / diskShapeIntersect for a disk
+// against every FCL primitive, double and float.
+//
+// The first byte picks the shape (ten kinds), the second the mode:
+// * raw: radius, dimensions and poses straight from IEEE bit patterns (NaN, inf,
+//   negative, huge, denormal, non-orthonormal): input describing no pair must
+//   give NaN distance, lower_bound and points and no contact; a valid pair must
+//   give a finite, checked answer;
+// * aligned: the shape placed so that its support point along -w is `gap` from
+//   the disk's support point along w (test/disk_shape_oracle.h), so the
+//   distance is exactly gap; gaps and lengths span 1e-9..1e6 of the scene, w is
+//   random, the disk's normal, or a shape's face normal;
+// * random: fractions of the bytes as dimensions and poses in the unit ball.
+// Every valid answer: the disk point on the disk and the shape point on the
+// shape (long double distances of disk_shape_oracle.h), |p - q| == distance,
+// lower_bound <= distance, the certified gap below kFuzzGapRelative of the
+// scene, and diskShapeIntersect agreeing with distance 0 outside the touching
+// band. Bounds are loose multiples of the documented ones: the fuzzer hunts
+// crashes, hangs and gross errors; the tests hold the exact bounds.
+#include <fcl_disk/disk_shape_distance.h>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <memory>
+#include <string>
+#include <type_traits>
+
+#include "disk_shape_oracle.h"
+#include "fuzz_input.h"
+
+namespace {
+
+using namespace fcl_disk_test::oracle;
+using fcl_disk_fuzz::ByteReader;
+
+/// Abort thresholds, relative to the scene: 1e3 times the documented 1e-12 in
+/// double; in float 64 ulps (the answer is rounded to float).
+constexpr double kFuzzRelativeDouble = 1e-9;
+constexpr double kFuzzRelativeFloat = 64 * 1.1920928955078125e-07;
+/// The certified gap: the header promises 1e-12 of the scene on converged
+/// answers and an honest bound otherwise; more than this is a finding.
+constexpr double kFuzzGapRelative = 1e-9;
+
+[[noreturn]] void fail(const std::string& what, const std::string& detail) {
+  std::fprintf(stderr, "invariant violated: %s\n  %s\n", what.c_str(), detail.c_str());
+  std::abort();
+}
+
+Shape makeShape(Kind kind, ByteReader& in, bool raw) {
+  Shape s;
+  s.kind = kind;
+  auto length = [&] { return raw ? Real(in.raw<double>()) : Real(0.02 + in.fraction()); };
+  switch (kind) {
+    case Kind::sphere: s.dims = V3(length(), 0, 0); break;
+    case Kind::box:
+    case Kind::ellipsoid: s.dims = V3(length(), length(), length()); break;
+    case Kind::capsule:
+    case Kind::cylinder:
+    case Kind::cone: s.dims = V3(length(), length(), 0); break;
+    case Kind::convex: {
+      // Fractions even in raw mode: FCL's own Convex constructor is not the target.
+      const Real a = Real(0.02 + in.fraction()), b = Real(0.02 + in.fraction()),
+                 h = Real(0.02 + in.fraction()), t = Real(in.fraction());
+      s.vertices = {V3(-a, -b, -h), V3(a, -b, -h), V3(a, b, -h), V3(-a, b, -h),
+                    V3(-a * t, -b * t, h), V3(a * t, -b * t, h), V3(a * t, b * t, h), V3(-a * t, b * t, h)};
+      s.faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+      break;
+    }
+    case Kind::halfspace:
+    case Kind::plane:
+      s.n = V3(Real(in.fraction() - 0.5), Real(in.fraction() - 0.5), Real(in.fraction() - 0.5));
+      if (!(s.n.norm() > 1e-3)) s.n = V3::UnitZ();
+      s.n.normalize();
+      s.d = raw ? Real(in.raw<double>()) : Real(in.fraction() - 0.5);
+      break;
+    case Kind::triangle:
+      for (int i = 0; i < 3; ++i) {
+        s.vertices.push_back(raw ? V3(Real(in.raw<double>()), Real(in.raw<double>()), Real(in.raw<double>()))
+                                 : V3(Real(in.fraction() - 0.5), Real(in.fraction() - 0.5),
+                                      Real(in.fraction() - 0.5)));
+      }
+      break;
+  }
+  return s;
+}
+
+M3 rotationFrom(ByteReader& in) {
+  Eigen::Quaternion<Real> q(Real(in.fraction() - 0.5), Real(in.fraction() - 0.5),
+                            Real(in.fraction() - 0.5), Real(in.fraction() - 0.5));
+  if (!(q.norm() > 1e-3)) q = Eigen::Quaternion<Real>::Identity();
+  return q.normalized().toRotationMatrix();
+}
+
+template <typename S>
+std::shared_ptr<fcl::ShapeBase<S>> toFcl(const Shape& s) {
+  const auto v = [](const V3& x) { return fcl::Vector3<S>(S(x.x()), S(x.y()), S(x.z())); };
+  switch (s.kind) {
+    case Kind::sphere: return std::make_shared<fcl::Sphere<S>>(S(s.dims.x()));
+    case Kind::box: return std::make_shared<fcl::Box<S>>(S(2 * s.dims.x()), S(2 * s.dims.y()), S(2 * s.dims.z()));
+    case Kind::capsule: return std::make_shared<fcl::Capsule<S>>(S(s.dims.x()), S(2 * s.dims.y()));
+    case Kind::cylinder: return std::make_shared<fcl::Cylinder<S>>(S(s.dims.x()), S(2 * s.dims.y()));
+    case Kind::cone: return std::make_shared<fcl::Cone<S>>(S(s.dims.x()), S(2 * s.dims.y()));
+    case Kind::ellipsoid: return std::make_shared<fcl::Ellipsoid<S>>(S(s.dims.x()), S(s.dims.y()), S(s.dims.z()));
+    case Kind::convex: {
+      auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+      for (const V3& x : s.vertices) vertices->push_back(v(x));
+      auto faces = std::make_shared<std::vector<int>>();
+      for (const auto& face : s.faces) {
+        faces->push_back(int(face.size()));
+        faces->insert(faces->end(), face.begin(), face.end());
+      }
+      return std::make_shared<fcl::Convex<S>>(vertices, int(s.faces.size()), faces);
+    }
+    case Kind::halfspace: return std::make_shared<fcl::Halfspace<S>>(v(s.n), S(s.d));
+    case Kind::plane: return std::make_shared<fcl::Plane<S>>(v(s.n), S(s.d));
+    case Kind::triangle:
+      return std::make_shared<fcl::TriangleP<S>>(v(s.vertices[0]), v(s.vertices[1]), v(s.vertices[2]));
+  }
+  return nullptr;
+}
+
+template <typename S, typename Shape>
+void query(S r, const fcl::Transform3<S>& X_WD, const Shape& shape, const fcl::Transform3<S>& X_WS,
+           fcl_disk::DiskShapeDistanceResult<S>* result, bool* intersect) {
+  *result = fcl_disk::diskShapeDistance(r, X_WD, shape, X_WS);
+  *intersect = fcl_disk::diskShapeIntersect(r, X_WD, shape, X_WS);
+}
+
+template <typename S>
+void queryAny(S r, const fcl::Transform3<S>& X_WD, const fcl::ShapeBase<S>& shape,
+              const fcl::Transform3<S>& X_WS, fcl_disk::DiskShapeDistanceResult<S>* result,
+              bool* intersect) {
+  switch (shape.getNodeType()) {
+    case fcl::GEOM_SPHERE: return query(r, X_WD, static_cast<const fcl::Sphere<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_BOX: return query(r, X_WD, static_cast<const fcl::Box<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_CAPSULE: return query(r, X_WD, static_cast<const fcl::Capsule<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_CYLINDER: return query(r, X_WD, static_cast<const fcl::Cylinder<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_CONE: return query(r, X_WD, static_cast<const fcl::Cone<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_ELLIPSOID: return query(r, X_WD, static_cast<const fcl::Ellipsoid<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_CONVEX: return query(r, X_WD, static_cast<const fcl::Convex<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_HALFSPACE: return query(r, X_WD, static_cast<const fcl::Halfspace<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_PLANE: return query(r, X_WD, static_cast<const fcl::Plane<S>&>(shape), X_WS, result, intersect);
+    case fcl::GEOM_TRIANGLE: return query(r, X_WD, static_cast<const fcl::TriangleP<S>&>(shape), X_WS, result, intersect);
+    default: std::abort();
+  }
+}
+
+/// Whether the input describes a pair (the library's rule, written here).
+template <typename S>
+bool describesPair(const Shape& s, S r, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
+  const auto finite_lengths = [&] {
+    for (int i = 0; i < 3; ++i) {
+      if (!(S(s.dims[i]) >= S(0) && S(s.dims[i]) <= fcl_disk::kMaxDiskLength<S>)) return false;
+    }
+    for (const V3& v : s.vertices) {
+      for (int i = 0; i < 3; ++i) {
+        if (!(std::abs(S(v[i])) <= fcl_disk::kMaxDiskLength<S>)) return false;
+      }
+    }
+    return !(s.kind == Kind::halfspace || s.kind == Kind::plane) ||
+           std::abs(S(s.d)) <= fcl_disk::kMaxDiskLength<S>;
+  };
+  return fcl_disk::isValidDiskRadius(r) && fcl_disk::isValidDiskPose(X_WD) &&
+         fcl_disk::isValidDiskPose(X_WS) && finite_lengths();
+}
+
+template <typename S>
+void check(const Shape& wanted, S r, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS,
+           Real truth) {
+  const auto fcl_shape = toFcl<S>(wanted);
+  fcl_disk::DiskShapeDistanceResult<S> result;
+  bool intersect = false;
+  queryAny(r, X_WD, *fcl_shape, X_WS, &result, &intersect);
+  char detail[512];
+  std::snprintf(detail, sizeof detail, "%s %s: r %.17g distance %.17g lower %.17g truth %.17Lg",
+                kindName(wanted.kind), std::is_same<S, float>::value ? "float" : "double", double(r),
+                double(result.distance), double(result.lower_bound), truth);
+  if (!describesPair(wanted, r, X_WD, X_WS)) {
+    if (!(std::isnan(result.distance) && std::isnan(result.lower_bound) &&
+          result.p_W_disk.array().isNaN().all() && result.p_W_shape.array().isNaN().all()) ||
+        intersect) {
+      fail("input describing no pair gives NaN and no contact", detail);
+    }
+    return;
+  }
+  Shape shape = wanted;  // as stored in S; halfspace and plane normals as FCL keeps them
+  for (int i = 0; i < 3; ++i) shape.dims[i] = Real(S(shape.dims[i]));
+  for (V3& v : shape.vertices) v = v.cast<S>().template cast<Real>();
+  if (shape.kind == Kind::halfspace) {
+    shape.n = static_cast<const fcl::Halfspace<S>&>(*fcl_shape).n.template cast<Real>();
+    shape.d = Real(static_cast<const fcl::Halfspace<S>&>(*fcl_shape).d);
+  } else if (shape.kind == Kind::plane) {
+    shape.n = static_cast<const fcl::Plane<S>&>(*fcl_shape).n.template cast<Real>();
+    shape.d = Real(static_cast<const fcl::Plane<S>&>(*fcl_shape).d);
+  }
+  if (!std::isfinite(double(result.distance))) fail("a valid pair gives a finite distance", detail);
+  const Disk disk{X_WD.translation().template cast<Real>(), X_WD.linear().col(0).template cast<Real>(),
+                  X_WD.linear().col(1).template cast<Real>(), Real(r)};
+  Pose X;
+  X.R = X_WS.linear().template cast<Real>();
+  X.t = X_WS.translation().template cast<Real>();
+  const bool boundary = shape.kind == Kind::halfspace || shape.kind == Kind::plane;
+  const Real scale = disk.r + shape.boundingRadius() +
+                     (boundary ? std::abs((X.R * shape.n).dot(disk.c - X.t) - shape.d) : (disk.c - X.t).norm());
+  const Real far = std::max(disk.c.norm(), X.t.norm());
+  const Real relative = std::is_same<S, float>::value ? kFuzzRelativeFloat : kFuzzRelativeDouble;
+  const Real tolerance = relative * scale + 8 * Real(std::numeric_limits<S>::epsilon()) * far;
+  const V3 p = result.p_W_disk.template cast<Real>(), q = result.p_W_shape.template cast<Real>();
+  if (!(pointToDisk(disk, p) <= tolerance)) fail("the disk point lies on the disk", detail);
+  if (!(pointDistanceWorld(shape, X, q) <= tolerance)) fail("the shape point lies on the shape", detail);
+  if (!(std::abs((p - q).norm() - Real(result.distance)) <= 2 * tolerance)) fail("|p - q| == distance", detail);
+  if (!(result.lower_bound <= result.distance)) fail("lower_bound <= distance", detail);
+  if (!(Real(result.distance - result.lower_bound) <= kFuzzGapRelative * scale + tolerance)) {
+    fail("the certified gap is closed", detail);
+  }
+  if (truth >= 0 && !(std::abs(Real(result.distance) - truth) <= tolerance)) {
+    fail("the distance equals the aligned gap", detail);
+  }
+  const Real band = 1e3 * tolerance;
+  if (result.distance == 0 && !intersect) fail("distance 0 means intersecting", detail);
+  if (Real(result.distance) > band && intersect) fail("apart means not intersecting", detail);
+}
+
+template <typename S>
+void run(ByteReader& in, Kind kind, int mode) {
+  const bool raw = mode == 0;
+  Shape shape = makeShape(kind, in, raw);
+  fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = fcl::Transform3<S>::Identity();
+  S r;
+  Real truth = -1;
+  if (raw) {
+    r = S(in.raw<double>());
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 4; ++j) X_WD.matrix()(i, j) = S(in.raw<double>());
+    }
+    X_WS.linear() = rotationFrom(in).cast<S>();
+    X_WS.translation() = fcl::Vector3<S>(S(in.raw<double>()), S(in.raw<double>()), S(in.raw<double>()));
+  } else {
+    const Real k = std::pow(Real(10), Real(12 * in.fraction() - 6));  // every length
+    for (int i = 0; i < 3; ++i) shape.dims[i] *= k;
+    for (V3& v : shape.vertices) v *= k;
+    shape.d *= k;
+    r = S(Real(0.02 + in.fraction()) * k);
+    const M3 R_disk = rotationFrom(in), R_shape = rotationFrom(in);
+    const V3 offset = in.byte() % 4 == 0 ? V3(rotationFrom(in).col(0) * k * Real(1e5)) : V3::Zero();
+    const Disk disk{offset, R_disk.col(0), R_disk.col(1), Real(r)};
+    Pose X;
+    if (mode == 1) {
+      // Aligned: w random, the disk normal, or (halfspace, plane) the normal.
+      V3 w = rotationFrom(in).col(2);
+      if (in.byte() % 2 == 0) w = R_disk.col(2);
+      if (kind == Kind::halfspace || kind == Kind::plane) w = -(R_shape * shape.n);
+      const Real gap = (r + shape.boundingRadius()) * std::pow(Real(10), Real(15 * in.fraction() - 9)) *
+                       (in.byte() % 8 == 0 ? 0 : 1);
+      X = alignedPair(disk, shape, R_shape, w, gap);
+      truth = gap;
+    } else {
+      X.R = R_shape;
+      X.t = offset + rotationFrom(in).col(0) * k * Real(1.5 * in.fraction());
+    }
+    X_WD.linear() = R_disk.cast<S>();
+    X_WD.translation() = offset.cast<S>();
+    X_WS.linear() = X.R.cast<S>();
+    X_WS.translation() = X.t.cast<S>();
+    // Rounding the poses to S moves the aligned truth by about an ulp of the
+    // offset: keep it only where that is negligible.
+    if (Real(std::numeric_limits<S>::epsilon()) * offset.norm() > 1e-3 * Real(kFuzzRelativeDouble) * k) truth = -1;
+  }
+  check<S>(shape, r, X_WD, X_WS, truth);
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  ByteReader in(data, size);
+  const Kind kind = Kind(in.byte() % 10);
+  const std::uint8_t mode_byte = in.byte();
+  const int mode = mode_byte % 3;
+  if (mode_byte & 0x80) {
+    run<float>(in, kind, mode);
+  } else {
+    run<double>(in, kind, mode);
+  }
+  return 0;
+}
