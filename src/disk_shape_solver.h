@@ -365,6 +365,31 @@ constexpr double kShapeFirstRimStep = 1e-9;
 constexpr double kShapeRimStepGrowth = 4.0;
 constexpr int kShapeRimSearchSteps = 80;
 
+/// Golden-section search of psi(point(t)) over [lo, hi] (kShapeRimSearchSteps
+/// steps); returns the better of `best` and the lowest point seen.
+template <typename PointAt>
+ShapeIterate goldenSection(PointAt point_at, double lo, double hi, ShapeIterate best) {
+  const double ratio = 0.6180339887498949;
+  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
+  ShapeIterate f1 = point_at(x1), f2 = point_at(x2);
+  for (int k = 0; k < kShapeRimSearchSteps && hi - lo > 0.0; ++k) {
+    if (f1.psi <= f2.psi) {
+      if (f1.psi < best.psi) best = f1;
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - ratio * (hi - lo);
+      f1 = point_at(x1);
+    } else {
+      if (f2.psi < best.psi) best = f2;
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + ratio * (hi - lo);
+      f2 = point_at(x2);
+    }
+  }
+  if (f1.psi < best.psi) best = f1;
+  if (f2.psi < best.psi) best = f2;
+  return best;
+}
+
 /// The local minimum of dist(x(theta), X) along the rim next to the rim iterate
 /// `at`, by bracketing and golden-section search on the distance itself. Where
 /// the disk's rim and X touch or nearly touch, psi = d^2 / 2 grows like the
@@ -402,27 +427,7 @@ ShapeIterate searchAlongRim(const Target& target, const DiskInShape& disk, const
       previous = current, current = theta0 + direction * step, best = next;
     }
   }
-  // Golden section on [lo, hi] around the best point.
-  const double ratio = 0.6180339887498949;
-  double a = lo, b = hi;
-  double x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
-  ShapeIterate f1 = at_angle(x1), f2 = at_angle(x2);
-  for (int k = 0; k < kShapeRimSearchSteps && b - a > 0.0; ++k) {
-    if (f1.psi <= f2.psi) {
-      if (f1.psi < best.psi) best = f1;
-      b = x2, x2 = x1, f2 = f1;
-      x1 = b - ratio * (b - a);
-      f1 = at_angle(x1);
-    } else {
-      if (f2.psi < best.psi) best = f2;
-      a = x1, x1 = x2, f1 = f2;
-      x2 = a + ratio * (b - a);
-      f2 = at_angle(x2);
-    }
-  }
-  if (f1.psi < best.psi) best = f1;
-  if (f2.psi < best.psi) best = f2;
-  return best;
+  return goldenSection(at_angle, lo, hi, best);
 }
 
 /// Rounds of searchInside (each along the flat then the steep direction).
@@ -436,28 +441,9 @@ ShapeIterate searchAlongChord(const Target& target, const DiskInShape& disk, con
   // s + t v stays in the disk for t in [-b - root, -b + root], b = s.v.
   const double b = at.s.dot(v);
   const double root = std::sqrt(std::max(0.0, b * b - (at.s.squaredNorm() - disk.r * disk.r)));
-  double lo = -b - root, hi = -b + root;
+  const double lo = -b - root, hi = -b + root;
   auto at_t = [&](double t) { return evaluateAt(target, disk, disk.nearest(disk.point(at.s + t * v))); };
-  const double ratio = 0.6180339887498949;
-  double x1 = hi - ratio * (hi - lo), x2 = lo + ratio * (hi - lo);
-  ShapeIterate f1 = at_t(x1), f2 = at_t(x2);
-  ShapeIterate best = at;
-  for (int k = 0; k < kShapeRimSearchSteps && hi - lo > 0.0; ++k) {
-    if (f1.psi <= f2.psi) {
-      if (f1.psi < best.psi) best = f1;
-      hi = x2, x2 = x1, f2 = f1;
-      x1 = hi - ratio * (hi - lo);
-      f1 = at_t(x1);
-    } else {
-      if (f2.psi < best.psi) best = f2;
-      lo = x1, x1 = x2, f1 = f2;
-      x2 = lo + ratio * (hi - lo);
-      f2 = at_t(x2);
-    }
-  }
-  if (f1.psi < best.psi) best = f1;
-  if (f2.psi < best.psi) best = f2;
-  return best;
+  return goldenSection(at_t, lo, hi, at);
 }
 
 /// The interior counterpart of searchAlongRim: where X's curved feature barely

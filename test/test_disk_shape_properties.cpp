@@ -22,6 +22,7 @@
 #include <string>
 #include <type_traits>
 
+#include "disk_shape_fcl.h"
 #include "disk_shape_oracle.h"
 #include "test_random.h"
 
@@ -91,37 +92,6 @@ Shape scaledShape(Shape s, Real k) {
   return s;
 }
 
-template <typename S>
-std::shared_ptr<fcl::ShapeBase<S>> toFcl(const Shape& s) {
-  const auto v = [](const V3& x) { return fcl::Vector3<S>(S(x.x()), S(x.y()), S(x.z())); };
-  switch (s.kind) {
-    case Kind::sphere: return std::make_shared<fcl::Sphere<S>>(S(s.dims.x()));
-    case Kind::box:
-      return std::make_shared<fcl::Box<S>>(S(2 * s.dims.x()), S(2 * s.dims.y()), S(2 * s.dims.z()));
-    case Kind::capsule: return std::make_shared<fcl::Capsule<S>>(S(s.dims.x()), S(2 * s.dims.y()));
-    case Kind::cylinder: return std::make_shared<fcl::Cylinder<S>>(S(s.dims.x()), S(2 * s.dims.y()));
-    case Kind::cone: return std::make_shared<fcl::Cone<S>>(S(s.dims.x()), S(2 * s.dims.y()));
-    case Kind::ellipsoid:
-      return std::make_shared<fcl::Ellipsoid<S>>(S(s.dims.x()), S(s.dims.y()), S(s.dims.z()));
-    case Kind::convex: {
-      auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
-      for (const V3& x : s.vertices) vertices->push_back(v(x));
-      auto faces = std::make_shared<std::vector<int>>();
-      for (const auto& face : s.faces) {
-        faces->push_back(int(face.size()));
-        faces->insert(faces->end(), face.begin(), face.end());
-      }
-      return std::make_shared<fcl::Convex<S>>(vertices, int(s.faces.size()), faces);
-    }
-    case Kind::halfspace: return std::make_shared<fcl::Halfspace<S>>(v(s.n), S(s.d));
-    case Kind::plane: return std::make_shared<fcl::Plane<S>>(v(s.n), S(s.d));
-    case Kind::triangle:
-      return std::make_shared<fcl::TriangleP<S>>(v(s.vertices[0]), v(s.vertices[1]),
-                                                 v(s.vertices[2]));
-  }
-  return nullptr;
-}
-
 /// The shape as stored in S (an fcl::Halfspace / Plane normalises its normal).
 template <typename S>
 Shape asStored(Shape s, const fcl::ShapeBase<S>& stored) {
@@ -148,22 +118,8 @@ struct Answer {
 template <typename S>
 Answer<S> direct(S r, const fcl::Transform3<S>& X_WD, const fcl::ShapeBase<S>& shape,
                  const fcl::Transform3<S>& X_WS) {
-  auto pack = [](const auto& a) { return Answer<S>{a.distance, a.lower_bound, a.p_W_disk, a.p_W_shape}; };
-  switch (shape.getNodeType()) {
-    case fcl::GEOM_SPHERE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Sphere<S>&>(shape), X_WS));
-    case fcl::GEOM_BOX: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Box<S>&>(shape), X_WS));
-    case fcl::GEOM_CAPSULE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Capsule<S>&>(shape), X_WS));
-    case fcl::GEOM_CYLINDER: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Cylinder<S>&>(shape), X_WS));
-    case fcl::GEOM_CONE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Cone<S>&>(shape), X_WS));
-    case fcl::GEOM_ELLIPSOID: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Ellipsoid<S>&>(shape), X_WS));
-    case fcl::GEOM_CONVEX: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Convex<S>&>(shape), X_WS));
-    case fcl::GEOM_HALFSPACE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Halfspace<S>&>(shape), X_WS));
-    case fcl::GEOM_PLANE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::Plane<S>&>(shape), X_WS));
-    case fcl::GEOM_TRIANGLE: return pack(fcl_disk::diskShapeDistance(r, X_WD, static_cast<const fcl::TriangleP<S>&>(shape), X_WS));
-    default: break;
-  }
-  ADD_FAILURE() << "no pair";
-  return {};
+  const auto a = diskShapeDistanceAny(r, X_WD, shape, X_WS);
+  return Answer<S>{a.distance, a.lower_bound, a.p_W_disk, a.p_W_shape};
 }
 
 template <typename S>
