@@ -35,6 +35,25 @@
 //                     pair of largest error;
 //   report.png        time against error, log-log (bench/plot_report.py);
 //   report_pairs.csv  with --pairs-csv: one row per (pair, solver).
+//
+// Then a section on a disk against every other FCL primitive (--shape-pairs N
+// random cases per shape, bench/disk_shape_cases.h: disk radius 0.5, shapes of
+// size ~0.5, centres in the unit ball, random rotations). Queries, all plain
+// fcl::distance on CollisionObjects, timed like the disk pairs above:
+//   disk                    Disk(r) against X, default request: whatever answers a
+//                           Disk in this build;
+//   sphere_<libccd|indep>   FCL's Sphere(r) at the disk's pose against X: the
+//                           baseline (time only: no reference for it here);
+//   gjk_<libccd|indep>      FCL on a real Cylinder(r, 0) at the disk's pose: GJK on
+//                           the flat cylinder, which is exactly the disk.
+// Every query kind first runs once over all cases of a shape in a forked child;
+// one that crashes, hangs, leaves the distance unset or makes FCL print "not
+// supported" is skipped and named (FCL 0.7: Sphere and Cylinder against
+// Halfspace or Plane segfault under libccd; no TriangleP pair at all). Error:
+// |d - d_ref| / (r + R_S + |c_D - c_S|), d_ref from the independent long-double
+// reference of test/disk_shape_oracle.h. Writes shapes.csv (one row per
+// shape) and shapes.png (bench/plot_shapes.py) in --out. --no-shapes skips the
+// section, --shapes-only runs nothing else.
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
@@ -60,8 +79,19 @@
 #include "disk_families.h"
 #include "reference_distance.h"
 
+#include <fcl/geometry/shape/sphere.h>
+
+#include <array>
+#include <limits>
+
+#include "disk_shape_cases.h"
+#include "disk_shape_oracle.h"
+
 #ifndef FCL_DISK_PLOT_SCRIPT
 #define FCL_DISK_PLOT_SCRIPT "bench/plot_report.py"
+#endif
+#ifndef FCL_DISK_PLOT_SHAPES_SCRIPT
+#define FCL_DISK_PLOT_SHAPES_SCRIPT "bench/plot_shapes.py"
 #endif
 #ifndef FCL_DISK_DEFAULT_OUT
 #define FCL_DISK_DEFAULT_OUT "build/report"
@@ -86,12 +116,15 @@ struct Options {
   bool plot = true;
   bool quick = false;
   bool pairs_csv = false;     ///< also write one row per (pair, solver)
+  int shape_pairs = 2000;     ///< disk-vs-shape section: cases per shape
+  bool shapes = true;         ///< run the disk-vs-shape section
+  bool shapes_only = false;   ///< run only the disk-vs-shape section
 };
 
 void printUsage(const char* argv0) {
   std::printf(
       "Usage: %s [--quick] [--out DIR] [--pairs N] [--reps R] [--batch-ns T] [--seed S] "
-      "[--pairs-csv] [--no-plot]\n"
+      "[--pairs-csv] [--no-plot] [--shape-pairs N] [--no-shapes] [--shapes-only]\n"
       "Runs every disk-disk solver (exact, almohamad_selim, FCL GJK libccd/indep on\n"
       "Cylinder(r, h), h = 1e-2, 1e-4, 1e-6) through fcl::distance on every configuration\n"
       "family, and reports time per query against error vs a long-double reference.\n"
@@ -103,12 +136,18 @@ void printUsage(const char* argv0) {
       "  --batch-ns T  target length of one batch in ns (default 2000; quick 500)\n"
       "  --seed S      family seed (default 20240601)\n"
       "  --pairs-csv   also write report_pairs.csv (one row per pair and solver)\n"
-      "  --no-plot     do not run bench/plot_report.py\n",
+      "  --no-plot     do not run bench/plot_report.py\n"
+      "Then Disk(r) against every other FCL primitive through fcl::distance, next to FCL's\n"
+      "Sphere(r) and GJK on Cylinder(r, 0) on the same poses (shapes.csv, shapes.png):\n"
+      "  --shape-pairs N  random cases per shape (default 2000; quick 20)\n"
+      "  --no-shapes      skip that section\n"
+      "  --shapes-only    run only that section\n",
       argv0, FCL_DISK_DEFAULT_OUT);
 }
 
 bool parseOptions(int argc, char** argv, Options* options) {
   bool pairs_set = false, reps_set = false, batch_set = false;
+  bool shape_pairs_set = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* name) -> const char* {
@@ -137,6 +176,13 @@ bool parseOptions(int argc, char** argv, Options* options) {
       options->pairs_csv = true;
     } else if (arg == "--no-plot") {
       options->plot = false;
+    } else if (arg == "--shape-pairs") {
+      options->shape_pairs = std::atoi(value("--shape-pairs"));
+      shape_pairs_set = true;
+    } else if (arg == "--no-shapes") {
+      options->shapes = false;
+    } else if (arg == "--shapes-only") {
+      options->shapes_only = true;
     } else if (arg == "--help" || arg == "-h") {
       printUsage(argv[0]);
       std::exit(0);
@@ -150,6 +196,11 @@ bool parseOptions(int argc, char** argv, Options* options) {
     if (!pairs_set) options->pairs_per_family = 20;
     if (!reps_set) options->reps = 3;
     if (!batch_set) options->batch_ns = 500;
+    if (!shape_pairs_set) options->shape_pairs = 20;
+  }
+  if (options->shape_pairs < 1) {
+    std::fprintf(stderr, "fcl_disk_report: --shape-pairs must be positive\n");
+    return false;
   }
   if (options->pairs_per_family < 1 || options->reps < 1 || !(options->batch_ns > 0)) {
     std::fprintf(stderr, "fcl_disk_report: --pairs, --reps and --batch-ns must be positive\n");
@@ -458,6 +509,400 @@ std::string findPython() {
   return "";
 }
 
+
+// ---------------------------------------------------------------------------
+// Disk against other shapes.
+
+namespace dsc = fcl_disk_shape_cases;
+
+// The independent long-double disk-vs-shape reference of the tests
+// (test/disk_shape_oracle.h: nested golden-section search over the disk of a
+// point-to-shape distance written there, sharing no code with the solver).
+constexpr bool kHaveShapeReference = true;
+constexpr std::size_t kReferencedPairs = 200;
+double shapeReference(const dsc::CaseSpec& spec) {
+  namespace oracle = fcl_disk_test::oracle;
+  using Real = oracle::Real;
+  oracle::Shape shape;
+  const auto& in = spec.shape;
+  const oracle::V3 dims = in.dims.cast<Real>();
+  switch (in.kind) {
+    case dsc::ShapeKind::sphere: shape.kind = oracle::Kind::sphere; shape.dims = dims; break;
+    case dsc::ShapeKind::box: shape.kind = oracle::Kind::box; shape.dims = dims / 2; break;
+    case dsc::ShapeKind::capsule:
+      shape.kind = oracle::Kind::capsule;
+      shape.dims = oracle::V3(dims.x(), dims.y() / 2, 0);
+      break;
+    case dsc::ShapeKind::cylinder:
+      shape.kind = oracle::Kind::cylinder;
+      shape.dims = oracle::V3(dims.x(), dims.y() / 2, 0);
+      break;
+    case dsc::ShapeKind::cone:
+      shape.kind = oracle::Kind::cone;
+      shape.dims = oracle::V3(dims.x(), dims.y() / 2, 0);
+      break;
+    case dsc::ShapeKind::ellipsoid: shape.kind = oracle::Kind::ellipsoid; shape.dims = dims; break;
+    case dsc::ShapeKind::convex8:
+    case dsc::ShapeKind::convex40: {
+      shape.kind = oracle::Kind::convex;
+      for (const auto& v : in.vertices) shape.vertices.push_back(v.cast<Real>());
+      std::size_t at = 0;
+      for (int f = 0; f < in.num_faces; ++f) {
+        const int count = in.faces[at];
+        shape.faces.emplace_back(in.faces.begin() + at + 1, in.faces.begin() + at + 1 + count);
+        at += count + 1;
+      }
+      break;
+    }
+    case dsc::ShapeKind::halfspace:
+    case dsc::ShapeKind::plane:
+      shape.kind = in.kind == dsc::ShapeKind::halfspace ? oracle::Kind::halfspace : oracle::Kind::plane;
+      shape.n = in.normal.normalized().cast<Real>();
+      shape.d = Real(in.offset) / Real(in.normal.norm());
+      break;
+    case dsc::ShapeKind::triangle:
+      shape.kind = oracle::Kind::triangle;
+      for (const auto& v : in.vertices) shape.vertices.push_back(v.cast<Real>());
+      break;
+  }
+  const oracle::Disk disk{spec.X_WD.translation().cast<Real>(),
+                          spec.X_WD.linear().col(0).cast<Real>(),
+                          spec.X_WD.linear().col(1).cast<Real>(), Real(spec.disk_radius)};
+  oracle::Pose X;
+  X.R = spec.X_WS.linear().cast<Real>();
+  X.t = spec.X_WS.translation().cast<Real>();
+  return double(oracle::referenceDistance(disk, shape, X));
+}
+
+enum ShapeSolver { kDisk, kSphereLibccd, kSphereIndep, kGjkLibccd, kGjkIndep, kNumShapeSolvers };
+
+const char* shapeSolverName(int s) {
+  static const char* const names[] = {"disk", "sphere_libccd", "sphere_indep", "gjk_libccd",
+                                      "gjk_indep"};
+  return names[s];
+}
+
+/// Whether the solver answers the disk's question (and so has an error).
+bool answersDisk(int s) { return s == kDisk || s == kGjkLibccd || s == kGjkIndep; }
+
+struct ShapePair {
+  dsc::CaseSpec spec;
+  double reference = std::nan("");  ///< d_ref (rounded to double); NaN without reference
+  std::unique_ptr<fcl::CollisionObjectd> disk, sphere, flat_cylinder, shape;
+};
+
+ShapePair prepareShapePair(dsc::CaseSpec spec) {
+  ShapePair p;
+  const fcl::Transform3d X_WD = dsc::toS<double>(spec.X_WD);
+  const double r = spec.disk_radius;
+  p.disk = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(r), X_WD);
+  p.sphere = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Sphered>(r), X_WD);
+  p.flat_cylinder =
+      std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Cylinderd>(r, 0.0), X_WD);
+  p.shape = std::make_unique<fcl::CollisionObjectd>(dsc::makeShape<double>(spec.shape),
+                                                    dsc::toS<double>(spec.X_WS));
+  p.spec = std::move(spec);
+  return p;
+}
+
+/// One fcl::distance of `solver` on `pair`, a fresh request and result; FCL's raw value.
+inline double shapeQuery(int solver, const ShapePair& pair) {
+  fcl::DistanceRequestd request;
+  request.gjk_solver_type =
+      solver == kSphereIndep || solver == kGjkIndep ? fcl::GST_INDEP : fcl::GST_LIBCCD;
+  fcl::DistanceResultd result;
+  const fcl::CollisionObjectd* first = solver == kDisk ? pair.disk.get()
+                                       : solver == kSphereLibccd || solver == kSphereIndep
+                                           ? pair.sphere.get()
+                                           : pair.flat_cylinder.get();
+  fcl::distance(first, pair.shape.get(), request, result);
+  return result.min_distance;
+}
+
+/// The timing of measure() above for any query: the first call gives the answer,
+/// the second sizes the batch, then `reps` batches; median ns per query.
+template <typename Query>
+std::pair<double, double> timeRepeated(const Query& query, const Options& options,
+                                       double clock_ns) {
+  const double answer = query();
+  const auto t0 = Clock::now();
+  double sink = query();
+  const auto t1 = Clock::now();
+  const double single = std::max(1.0, nsBetween(t0, t1) - clock_ns);
+  const int k = static_cast<int>(std::clamp(options.batch_ns / single, 1.0, 4096.0));
+  std::vector<double> batches(options.reps);
+  for (int r = 0; r < options.reps; ++r) {
+    const auto b0 = Clock::now();
+    for (int i = 0; i < k; ++i) {
+      sink += query();
+      keep(sink);
+    }
+    const auto b1 = Clock::now();
+    batches[r] = std::max(0.0, nsBetween(b0, b1) - clock_ns) / k;
+  }
+  keep(sink);
+  return {answer, median(batches)};
+}
+
+struct ShapeSolverSummary {
+  bool measured = false;
+  std::string skip_reason;  ///< why not measured
+  double median_ns = std::nan(""), p99_ns = std::nan("");
+  double median_err = std::nan(""), max_err = std::nan("");  ///< NaN: no error computed
+  std::string worst_case;
+};
+
+struct ShapeSummary {
+  std::string shape;
+  std::size_t pairs = 0;
+  double overlap_fraction = std::nan("");  ///< d_ref == 0; NaN without reference
+  std::array<ShapeSolverSummary, kNumShapeSolvers> solvers;
+};
+
+/// The faster of two measured summaries (index), or -1 if neither was measured.
+int faster(const ShapeSummary& s, int a, int b) {
+  const bool ma = s.solvers[a].measured, mb = s.solvers[b].measured;
+  if (ma && mb) return s.solvers[a].median_ns <= s.solvers[b].median_ns ? a : b;
+  return ma ? a : mb ? b : -1;
+}
+
+std::string csvNumber(double v) {
+  if (std::isnan(v)) return "";
+  std::ostringstream out;
+  out.precision(6);
+  out << v;
+  return out.str();
+}
+
+std::string csvQuoted(const std::string& text) {
+  std::string quoted = "\"";
+  for (char ch : text) quoted += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return quoted + "\"";
+}
+
+int runShapeSection(const Options& options, double clock_ns) {
+  const auto& kinds = dsc::allShapeKinds();
+  const std::size_t n = static_cast<std::size_t>(options.shape_pairs);
+  std::vector<ShapeSummary> summaries;
+  const auto run_start = Clock::now();
+  {
+    Progress progress(kinds.size() * n);
+    std::size_t done = 0;
+    for (std::size_t t = 0; t < kinds.size(); ++t) {
+      const dsc::ShapeKind kind = kinds[t];
+      char label[64];
+      std::snprintf(label, sizeof label, "shape %zu/%zu %s", t + 1, kinds.size(),
+                    dsc::shapeName(kind));
+      progress.update(done, std::string(label) + ": cases", true);
+      std::vector<ShapePair> pairs;
+      pairs.reserve(n);
+      for (dsc::CaseSpec& spec : dsc::makeCases(kind, n, options.seed))
+        pairs.push_back(prepareShapePair(std::move(spec)));
+      // The reference costs ~1e4 point-to-shape distances in long double: the
+      // errors come from the first kReferencedPairs cases of each shape.
+      if (kHaveShapeReference) {
+        progress.update(done, std::string(label) + ": reference", true);
+        for (std::size_t i = 0; i < pairs.size() && i < kReferencedPairs; ++i)
+          pairs[i].reference = shapeReference(pairs[i].spec);
+      }
+
+      ShapeSummary summary;
+      summary.shape = dsc::shapeName(kind);
+      summary.pairs = pairs.size();
+      // Each query kind once over all cases, in a child: skip what does not finish.
+      progress.update(done, std::string(label) + ": probe", true);
+      for (int s = 0; s < kNumShapeSolvers; ++s) {
+        const auto outcome = dsc::probeInChild(
+            [&]() -> int {
+              for (const ShapePair& p : pairs)
+                if (shapeQuery(s, p) == std::numeric_limits<double>::max()) return 10;
+              return 0;
+            },
+            [](int code) {
+              return code == 10 ? std::string("no answer (distance left at max)")
+                                : "exit code " + std::to_string(code);
+            });
+        summary.solvers[s].measured = outcome.ok;
+        summary.solvers[s].skip_reason = outcome.reason;
+      }
+
+      std::array<std::vector<double>, kNumShapeSolvers> ns, err;
+      std::array<double, kNumShapeSolvers> worst_err;
+      worst_err.fill(-1);
+      std::size_t overlaps = 0;
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const ShapePair& p = pairs[i];
+        if (p.reference == 0) ++overlaps;
+        for (int j = 0; j < kNumShapeSolvers; ++j) {
+          const int s = static_cast<int>((i + j) % kNumShapeSolvers);  // rotate the order
+          if (!summary.solvers[s].measured) continue;
+          const auto [answer, time_ns] =
+              timeRepeated([&]() { return shapeQuery(s, p); }, options, clock_ns);
+          ns[s].push_back(time_ns);
+          if (!answersDisk(s) || std::isnan(p.reference)) continue;
+          const double d = answer < 0 ? 0.0 : answer;  // FCL's overlap value -1 read as 0
+          const double e = std::isnan(d) ? std::numeric_limits<double>::infinity()
+                                         : std::fabs(d - p.reference) / p.spec.scale;
+          err[s].push_back(e);
+          if (e > worst_err[s]) {
+            worst_err[s] = e;
+            summary.solvers[s].worst_case = p.spec.name;
+          }
+        }
+        progress.update(done + i + 1, std::string(label) + ": timing");
+      }
+      if (kHaveShapeReference) {
+        summary.overlap_fraction =
+            double(overlaps) / double(std::min<std::size_t>(pairs.size(), kReferencedPairs));
+      }
+      for (int s = 0; s < kNumShapeSolvers; ++s) {
+        ShapeSolverSummary& out = summary.solvers[s];
+        if (!out.measured) continue;
+        out.median_ns = median(ns[s]);
+        out.p99_ns = percentile(ns[s], 0.99);
+        if (!err[s].empty()) {
+          out.median_err = median(err[s]);
+          out.max_err = *std::max_element(err[s].begin(), err[s].end());
+        }
+      }
+      summaries.push_back(std::move(summary));
+      done += pairs.size();
+    }
+    progress.finish();
+  }
+  const double run_seconds = nsBetween(run_start, Clock::now()) * 1e-9;
+
+  // Table.
+  auto ns = [](const ShapeSolverSummary& s) { return s.measured ? formatNs(s.median_ns) : "-"; };
+  auto err = [](const ShapeSolverSummary& s) { return formatErr(s.max_err); };
+  std::printf("\n## Disk against other shapes (fcl::distance; %d cases per shape, seed %llu)\n\n",
+              options.shape_pairs, static_cast<unsigned long long>(options.seed));
+  std::printf("machine: %s, %ld logical CPUs; time = median of %d batches of the same query "
+              "(batch ~%.0f ns, clock cost %.1f ns subtracted), then median and p99 over the "
+              "cases; the section took %.0f s.\n",
+              machineName().c_str(), sysconf(_SC_NPROCESSORS_ONLN), options.reps,
+              options.batch_ns, clock_ns, run_seconds);
+  std::printf("Cases: disk r = 0.5 and a shape of size ~0.5 (bench/disk_shape_cases.h), centres "
+              "uniform in the unit ball, uniform rotations. disk = Disk(r) against X; sphere = "
+              "FCL's Sphere(r) against X at the disk's pose; GJK = FCL on Cylinder(r, 0) at the "
+              "disk's pose. Sphere and GJK columns: the faster of libccd / indep (named).\n");
+  if (kHaveShapeReference) {
+    std::printf("error (over the first %zu cases of each shape; overlap: their share at distance "
+              "0) = |d - d_ref| / (r + R_S + |c_D - c_S|), d_ref: long-double reference "
+                "(test/disk_shape_oracle.h); FCL's overlap value -1 read as 0.\n\n",
+                kReferencedPairs);
+  } else {
+    std::printf("error: not computed (no disk-vs-shape reference in this build: "
+                "test/disk_shape_oracle.h).\n\n");
+  }
+  std::printf("| shape | cases | overlap | disk median ns | disk p99 ns | sphere median ns | GJK "
+              "flat cylinder median ns | disk / sphere | GJK / disk | disk max err | GJK max "
+              "err |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const ShapeSummary& s : summaries) {
+    const ShapeSolverSummary& disk = s.solvers[kDisk];
+    const int sphere = faster(s, kSphereLibccd, kSphereIndep);
+    const int gjk = faster(s, kGjkLibccd, kGjkIndep);
+    auto named = [&](int index) {
+      if (index < 0) return std::string("-");
+      return ns(s.solvers[index]) +
+             (index == kSphereLibccd || index == kGjkLibccd ? " (libccd)" : " (indep)");
+    };
+    char overlap[32] = "-";
+    if (!std::isnan(s.overlap_fraction))
+      std::snprintf(overlap, sizeof overlap, "%.0f%%", 100 * s.overlap_fraction);
+    char disk_over_sphere[32] = "-", gjk_over_disk[32] = "-";
+    if (disk.measured && sphere >= 0)
+      std::snprintf(disk_over_sphere, sizeof disk_over_sphere, "%.2fx",
+                    disk.median_ns / s.solvers[sphere].median_ns);
+    if (disk.measured && gjk >= 0)
+      std::snprintf(gjk_over_disk, sizeof gjk_over_disk, "%.1fx",
+                    s.solvers[gjk].median_ns / disk.median_ns);
+    std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", s.shape.c_str(),
+                s.pairs, overlap, ns(disk).c_str(),
+                disk.measured ? formatNs(disk.p99_ns).c_str() : "-",
+                named(sphere).c_str(), named(gjk).c_str(), disk_over_sphere,
+                gjk_over_disk, err(disk).c_str(),
+                gjk >= 0 ? err(s.solvers[gjk]).c_str() : "-");
+  }
+  bool any_skipped = false;
+  for (const ShapeSummary& s : summaries)
+    for (int k = 0; k < kNumShapeSolvers; ++k)
+      if (!s.solvers[k].measured) {
+        if (!any_skipped) std::printf("\nNot measured (probed in a child process first):\n");
+        any_skipped = true;
+        std::printf("- %s / %s: %s\n", s.shape.c_str(), shapeSolverName(k),
+                    s.solvers[k].skip_reason.c_str());
+      }
+
+  // CSV: one row per shape, every query kind's figures.
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  const std::string csv_path = options.out_dir + "/shapes.csv";
+  const std::string png_path = options.out_dir + "/shapes.png";
+  {
+    std::ofstream csv(csv_path);
+    if (!csv) {
+      std::fprintf(stderr, "fcl_disk_report: cannot write %s\n", csv_path.c_str());
+      return 1;
+    }
+    csv << "shape,cases,overlap_fraction";
+    for (int k = 0; k < kNumShapeSolvers; ++k) {
+      const std::string p = shapeSolverName(k);
+      csv << ',' << p << "_median_ns," << p << "_p99_ns";
+      if (answersDisk(k))
+        csv << ',' << p << "_median_rel_err," << p << "_max_rel_err," << p << "_worst_case";
+    }
+    csv << ",sphere_solver,gjk_solver,disk_over_sphere,gjk_over_disk,not_measured\n";
+    for (const ShapeSummary& s : summaries) {
+      csv << s.shape << ',' << s.pairs << ',' << csvNumber(s.overlap_fraction);
+      std::string not_measured;
+      for (int k = 0; k < kNumShapeSolvers; ++k) {
+        const ShapeSolverSummary& m = s.solvers[k];
+        csv << ',' << csvNumber(m.median_ns) << ',' << csvNumber(m.p99_ns);
+        if (answersDisk(k))
+          csv << ',' << csvNumber(m.median_err) << ',' << csvNumber(m.max_err) << ','
+              << m.worst_case;
+        if (!m.measured)
+          not_measured += std::string(not_measured.empty() ? "" : "; ") + shapeSolverName(k) +
+                          ": " + m.skip_reason;
+      }
+      const ShapeSolverSummary& disk = s.solvers[kDisk];
+      const int sphere = faster(s, kSphereLibccd, kSphereIndep);
+      const int gjk = faster(s, kGjkLibccd, kGjkIndep);
+      csv << ',' << (sphere >= 0 ? shapeSolverName(sphere) : "") << ','
+          << (gjk >= 0 ? shapeSolverName(gjk) : "") << ','
+          << csvNumber(disk.measured && sphere >= 0
+                           ? disk.median_ns / s.solvers[sphere].median_ns
+                           : std::nan(""))
+          << ','
+          << csvNumber(disk.measured && gjk >= 0 ? s.solvers[gjk].median_ns / disk.median_ns
+                                                 : std::nan(""))
+          << ',' << csvQuoted(not_measured) << '\n';
+    }
+  }
+  std::printf("\nwrote %s\n", csv_path.c_str());
+
+  if (options.plot) {
+    const std::string python = findPython();
+    const std::string command = "'" + (python.empty() ? std::string("python3") : python) +
+                                "' '" FCL_DISK_PLOT_SHAPES_SCRIPT "' '" + csv_path + "' '" +
+                                png_path + "'";
+    if (python.empty()) {
+      std::fprintf(stderr,
+                   "fcl_disk_report: no python3 with matplotlib found (apt-get install "
+                   "python3-matplotlib, or set FCL_DISK_PYTHON); plot skipped. Run:\n  %s\n",
+                   command.c_str());
+    } else if (std::system(command.c_str()) != 0) {
+      std::fprintf(stderr, "fcl_disk_report: plotting failed: %s\n", command.c_str());
+      return 1;
+    } else {
+      std::printf("wrote %s\n", png_path.c_str());
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -470,6 +915,7 @@ int main(int argc, char** argv) {
   const std::size_t num_solvers = solvers.size();
   const auto& families = fam::allFamilies();
   const double clock_ns = measureClockOverhead();
+  if (options.shapes_only) return runShapeSection(options, clock_ns);
 
   // 1. Family by family: pairs, references, then every solver on every pair,
   //    interleaved; the FCL objects are freed before the next family.
@@ -694,5 +1140,6 @@ int main(int argc, char** argv) {
       std::printf("wrote %s\n", png_path.c_str());
     }
   }
+  if (options.shapes) return runShapeSection(options, clock_ns);
   return 0;
 }

@@ -1,0 +1,295 @@
+// Google Benchmark suite for disk-vs-primitive queries (built with
+// -DFCL_DISK_BUILD_BENCHMARKS=ON; not part of the test run).
+//
+// For every shape X of bench/disk_shape_cases.h (sphere, box, capsule, cylinder,
+// cone, ellipsoid, convex8, convex40, halfspace, plane, triangle) a fixed pool of
+// kPoolSize random cases (disk radius 0.5, shapes ~0.5, centres in the unit
+// ball, random rotations, separated and overlapping mixed); every benchmark
+// cycles through the pool, one case per iteration, with a fresh request and
+// result each time. Names: disk_shapes/<shape>/<variant>/<scalar>, variants:
+//   distance_disk_<libccd|indep>      fcl::distance(Disk(r), X) on CollisionObjects,
+//                                     request.gjk_solver_type as named (float and
+//                                     double): whatever answers a Disk in this
+//                                     build, fcl_disk's solver or FCL's GJK on the
+//                                     flat cylinder;
+//   distance_swapped_libccd           fcl::distance(X, Disk(r)): the other order;
+//   distance_sphere_<libccd|indep>    FCL's own fcl::distance(Sphere(r), X), same
+//                                     poses: the baseline for a disk;
+//   distance_flat_cylinder_<libccd|indep>
+//                                     FCL on a real fcl::Cylinder(r, 0), same
+//                                     poses: GJK on the flat cylinder, what a disk
+//                                     got before fcl_disk had its own solvers
+//                                     (fcl_disk leaves real cylinders to FCL);
+//   collide_disk, collide_sphere      fcl::collide(Disk(r) / Sphere(r), X), default
+//                                     CollisionRequest (one contact, no contact
+//                                     points);
+//   direct                            fcl_disk::diskShapeDistance called directly
+//                                     (float and double): distance_disk minus
+//                                     direct = the cost of going through FCL.
+// Counters: overlap = fraction of iterations answering "overlap" (collide true,
+// or distance <= 1e-9 in double, 1e-5 in float, the cases being of size ~1: GJK
+// reports overlap as -1, an iterative solver may stop at 1e-16 in double or 1e-8
+// in float): equal across variants on the same poses, a check that they answer
+// the same question.
+//
+// Skipped variants (shown as errors in the output, with the reason): before
+// registering, every variant runs once over its whole pool in a forked child
+// (probeInChild); a variant that crashes, hangs, leaves the distance unset or
+// makes FCL print "not supported" is not timed. FCL 0.7 has no distance or
+// collision function for TriangleP against any shape (Sphere and Cylinder
+// included), and Cylinder(r, 0) against Halfspace or Plane segfaults under
+// libccd.
+//
+// Run with repetitions and read the median aggregates, e.g.
+//   bench_disk_shapes --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
+//   bench_disk_shapes --benchmark_filter='disk_shapes/box/'
+#include <fcl_disk/fcl_disk.h>  // first: declares the float fcl::distance/collide instantiations
+#include <fcl_disk/disk_shape_distance.h>
+
+#include <benchmark/benchmark.h>
+
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "disk_shape_cases.h"
+
+namespace {
+
+namespace dsc = fcl_disk_shape_cases;
+using dsc::ShapeKind;
+
+constexpr std::size_t kPoolSize = 1024;  // a power of two: index = i & (kPoolSize - 1)
+constexpr std::uint64_t kSeed = 20240601;
+template <typename S>
+constexpr S kOverlapTolerance = sizeof(S) == sizeof(float) ? S(1e-5) : S(1e-9);
+
+template <typename S>
+using Objects = std::vector<std::unique_ptr<fcl::CollisionObject<S>>>;
+
+template <typename S>
+struct Pool {
+  Objects<S> disk, shape, sphere, flat_cylinder;  ///< case k in slot k of each
+};
+
+template <typename S>
+const Pool<S>& pool(ShapeKind kind) {
+  static std::vector<std::unique_ptr<Pool<S>>> pools(dsc::allShapeKinds().size());
+  auto& slot = pools[static_cast<int>(kind)];
+  if (!slot) {
+    slot = std::make_unique<Pool<S>>();
+    for (const dsc::CaseSpec& c : dsc::makeCases(kind, kPoolSize, kSeed)) {
+      const S r = S(c.disk_radius);
+      const fcl::Transform3<S> X_WD = dsc::toS<S>(c.X_WD);
+      slot->disk.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl_disk::Disk<S>>(r), X_WD));
+      slot->sphere.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl::Sphere<S>>(r), X_WD));
+      slot->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          std::make_shared<fcl::Cylinder<S>>(r, S(0)), X_WD));
+      slot->shape.push_back(std::make_unique<fcl::CollisionObject<S>>(
+          dsc::makeShape<S>(c.shape), dsc::toS<S>(c.X_WS)));
+    }
+  }
+  return *slot;
+}
+
+enum class Variant {
+  distance_disk,
+  distance_swapped,
+  distance_sphere,
+  distance_flat_cylinder,
+  collide_disk,
+  collide_sphere
+};
+
+struct Query {
+  ShapeKind kind;
+  Variant variant;
+  fcl::GJKSolverType solver = fcl::GST_LIBCCD;
+};
+
+std::string variantName(const Query& q) {
+  const char* solver = q.solver == fcl::GST_LIBCCD ? "libccd" : "indep";
+  switch (q.variant) {
+    case Variant::distance_disk: return std::string("distance_disk_") + solver;
+    case Variant::distance_swapped: return std::string("distance_swapped_") + solver;
+    case Variant::distance_sphere: return std::string("distance_sphere_") + solver;
+    case Variant::distance_flat_cylinder: return std::string("distance_flat_cylinder_") + solver;
+    case Variant::collide_disk: return "collide_disk";
+    case Variant::collide_sphere: return "collide_sphere";
+  }
+  return "?";
+}
+
+/// The two objects of case k, in query order.
+template <typename S>
+std::pair<const fcl::CollisionObject<S>*, const fcl::CollisionObject<S>*> objects(
+    const Pool<S>& p, Variant variant, std::size_t k) {
+  switch (variant) {
+    case Variant::distance_disk:
+    case Variant::collide_disk: return {p.disk[k].get(), p.shape[k].get()};
+    case Variant::distance_swapped: return {p.shape[k].get(), p.disk[k].get()};
+    case Variant::distance_sphere:
+    case Variant::collide_sphere: return {p.sphere[k].get(), p.shape[k].get()};
+    case Variant::distance_flat_cylinder: return {p.flat_cylinder[k].get(), p.shape[k].get()};
+  }
+  return {nullptr, nullptr};
+}
+
+bool isCollide(Variant v) { return v == Variant::collide_disk || v == Variant::collide_sphere; }
+
+/// One query on case k; returns whether it answered "overlap".
+template <typename S>
+inline bool runQuery(const Pool<S>& p, const Query& q, std::size_t k, S* distance_out) {
+  const auto [o1, o2] = objects(p, q.variant, k);
+  if (isCollide(q.variant)) {
+    fcl::CollisionRequest<S> request;
+    request.gjk_solver_type = q.solver;
+    fcl::CollisionResult<S> result;
+    const std::size_t contacts = fcl::collide(o1, o2, request, result);
+    benchmark::DoNotOptimize(result);
+    return contacts > 0;
+  }
+  fcl::DistanceRequest<S> request;
+  request.gjk_solver_type = q.solver;
+  fcl::DistanceResult<S> result;
+  const S d = fcl::distance(o1, o2, request, result);
+  benchmark::DoNotOptimize(result);
+  if (distance_out) *distance_out = result.min_distance;
+  return d <= kOverlapTolerance<S>;
+}
+
+template <typename S>
+void benchQuery(benchmark::State& state, Query q, std::string skip_reason) {
+  if (!skip_reason.empty()) {
+    state.SkipWithError(skip_reason.c_str());
+    return;
+  }
+  const Pool<S>& p = pool<S>(q.kind);
+  std::size_t i = 0;
+  std::int64_t overlaps = 0;
+  for (auto _ : state) {
+    overlaps += runQuery<S>(p, q, i++ & (kPoolSize - 1), nullptr);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["pool"] = kPoolSize;
+  state.counters["overlap"] =
+      double(overlaps) / double(std::max<std::int64_t>(1, state.iterations()));
+}
+
+/// diskShapeDistance on the pool's cases, the shape as its own type.
+template <typename S, typename Shape>
+void benchDirect(benchmark::State& state, ShapeKind kind) {
+  const Pool<S>& p = pool<S>(kind);
+  std::vector<const Shape*> shapes;
+  for (const auto& o : p.shape)
+    shapes.push_back(static_cast<const Shape*>(o->collisionGeometry().get()));
+  std::size_t i = 0;
+  std::int64_t overlaps = 0;
+  for (auto _ : state) {
+    const std::size_t k = i++ & (kPoolSize - 1);
+    const auto answer = fcl_disk::diskShapeDistance<S>(
+        S(dsc::kDiskRadius), p.disk[k]->getTransform(), *shapes[k], p.shape[k]->getTransform());
+    benchmark::DoNotOptimize(answer);
+    overlaps += answer.distance <= kOverlapTolerance<S>;
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["pool"] = kPoolSize;
+  state.counters["overlap"] =
+      double(overlaps) / double(std::max<std::int64_t>(1, state.iterations()));
+}
+
+template <typename S>
+void registerDirect(ShapeKind kind, const char* scalar) {
+  const std::string name =
+      std::string("disk_shapes/") + dsc::shapeName(kind) + "/direct/" + scalar;
+  void (*function)(benchmark::State&, ShapeKind) = nullptr;
+  switch (kind) {
+    case ShapeKind::sphere: function = benchDirect<S, fcl::Sphere<S>>; break;
+    case ShapeKind::box: function = benchDirect<S, fcl::Box<S>>; break;
+    case ShapeKind::capsule: function = benchDirect<S, fcl::Capsule<S>>; break;
+    case ShapeKind::cylinder: function = benchDirect<S, fcl::Cylinder<S>>; break;
+    case ShapeKind::cone: function = benchDirect<S, fcl::Cone<S>>; break;
+    case ShapeKind::ellipsoid: function = benchDirect<S, fcl::Ellipsoid<S>>; break;
+    case ShapeKind::convex8:
+    case ShapeKind::convex40: function = benchDirect<S, fcl::Convex<S>>; break;
+    case ShapeKind::halfspace: function = benchDirect<S, fcl::Halfspace<S>>; break;
+    case ShapeKind::plane: function = benchDirect<S, fcl::Plane<S>>; break;
+    case ShapeKind::triangle: function = benchDirect<S, fcl::TriangleP<S>>; break;
+  }
+  benchmark::RegisterBenchmark(name.c_str(), function, kind);
+}
+
+/// Every case of the pool once, in a child: "" if all answered, else the reason.
+template <typename S>
+std::string probe(const Query& q) {
+  const Pool<S>& p = pool<S>(q.kind);  // built here, shared with the child
+  const auto outcome = dsc::probeInChild(
+      [&]() -> int {
+        for (std::size_t k = 0; k < kPoolSize; ++k) {
+          S d = S(0);
+          runQuery<S>(p, q, k, &d);
+          if (!isCollide(q.variant) && d == std::numeric_limits<S>::max()) return 10;
+        }
+        return 0;
+      },
+      [](int code) {
+        return code == 10 ? std::string("no answer (distance left at max)")
+                          : "exit code " + std::to_string(code);
+      });
+  return outcome.ok ? "" : "skipped: " + outcome.reason;
+}
+
+template <typename S>
+void registerQuery(const Query& q, const char* scalar, int* skipped) {
+  const std::string name = std::string("disk_shapes/") + dsc::shapeName(q.kind) + "/" +
+                           variantName(q) + "/" + scalar;
+  std::string reason = probe<S>(q);
+  if (!reason.empty()) {
+    ++*skipped;
+    std::fprintf(stderr, "bench_disk_shapes: %s %s\n", name.c_str(), reason.c_str());
+  }
+  benchmark::RegisterBenchmark(name.c_str(), [q, reason](benchmark::State& st) {
+    benchQuery<S>(st, q, reason);
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  int skipped = 0;
+  for (ShapeKind kind : dsc::allShapeKinds()) {
+    for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+      registerQuery<double>({kind, Variant::distance_disk, solver}, "double", &skipped);
+      registerQuery<float>({kind, Variant::distance_disk, solver}, "float", &skipped);
+    }
+    registerDirect<double>(kind, "double");
+    registerDirect<float>(kind, "float");
+    registerQuery<double>({kind, Variant::distance_swapped, fcl::GST_LIBCCD}, "double", &skipped);
+    for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP})
+      registerQuery<double>({kind, Variant::distance_sphere, solver}, "double", &skipped);
+    for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP})
+      registerQuery<double>({kind, Variant::distance_flat_cylinder, solver}, "double", &skipped);
+    registerQuery<double>({kind, Variant::collide_disk, fcl::GST_LIBCCD}, "double", &skipped);
+    registerQuery<double>({kind, Variant::collide_sphere, fcl::GST_LIBCCD}, "double", &skipped);
+  }
+  if (skipped)
+    std::fprintf(stderr, "bench_disk_shapes: %d variants skipped (probed in a child process)\n",
+                 skipped);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
