@@ -544,8 +544,13 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
 
   // The answer at the current iterate, with its certificate `lower` (for X + B_rho).
   auto finish = [&](int iteration, double lower) {
-    // Still open: search by values, along the rim or inside the disk.
-    if (std::sqrt(2.0 * at.psi) - rho - lower > kShapeFallbackGap * scale) {
+    // Still open: search by values, along the rim or inside the disk. The
+    // intersection goal needs it only while its answer is undecided.
+    const double open_distance = std::sqrt(2.0 * at.psi) - rho;
+    const bool undecided = goal == SolverGoal::distance
+                               ? open_distance - lower > kShapeFallbackGap * scale
+                               : open_distance > touching && !(lower > touching);
+    if (undecided) {
       const double psi_before = at.psi;
       at = at.s.norm() >= r * (1.0 - kShapeOnRim) ? searchAlongRim(target, disk, at)
                                                  : searchInside(target, disk, at);
