@@ -510,6 +510,26 @@ std::string findPython() {
 }
 
 
+/// Draws `png_path` from `csv_path` with the plotting `script`; false if
+/// plotting failed (a missing matplotlib only skips the plot, saying how).
+bool runPlot(const char* script, const std::string& csv_path, const std::string& png_path) {
+  const std::string python = findPython();
+  const std::string command = "'" + (python.empty() ? std::string("python3") : python) + "' '" +
+                              script + "' '" + csv_path + "' '" + png_path + "'";
+  if (python.empty()) {
+    std::fprintf(stderr,
+                 "fcl_disk_report: no python3 with matplotlib found (apt-get install "
+                 "python3-matplotlib, or set FCL_DISK_PYTHON); plot skipped. Run:\n  %s\n",
+                 command.c_str());
+  } else if (std::system(command.c_str()) != 0) {
+    std::fprintf(stderr, "fcl_disk_report: plotting failed: %s\n", command.c_str());
+    return false;
+  } else {
+    std::printf("wrote %s\n", png_path.c_str());
+  }
+  return true;
+}
+
 // ---------------------------------------------------------------------------
 // Disk against other shapes.
 
@@ -883,23 +903,7 @@ int runShapeSection(const Options& options, double clock_ns) {
   }
   std::printf("\nwrote %s\n", csv_path.c_str());
 
-  if (options.plot) {
-    const std::string python = findPython();
-    const std::string command = "'" + (python.empty() ? std::string("python3") : python) +
-                                "' '" FCL_DISK_PLOT_SHAPES_SCRIPT "' '" + csv_path + "' '" +
-                                png_path + "'";
-    if (python.empty()) {
-      std::fprintf(stderr,
-                   "fcl_disk_report: no python3 with matplotlib found (apt-get install "
-                   "python3-matplotlib, or set FCL_DISK_PYTHON); plot skipped. Run:\n  %s\n",
-                   command.c_str());
-    } else if (std::system(command.c_str()) != 0) {
-      std::fprintf(stderr, "fcl_disk_report: plotting failed: %s\n", command.c_str());
-      return 1;
-    } else {
-      std::printf("wrote %s\n", png_path.c_str());
-    }
-  }
+  if (options.plot && !runPlot(FCL_DISK_PLOT_SHAPES_SCRIPT, csv_path, png_path)) return 1;
   return 0;
 }
 
@@ -1123,23 +1127,7 @@ int main(int argc, char** argv) {
   }
 
   // 8. The plot.
-  if (options.plot) {
-    const std::string python = findPython();
-    const std::string command = "'" + (python.empty() ? std::string("python3") : python) +
-                                "' '" FCL_DISK_PLOT_SCRIPT "' '" + csv_path + "' '" + png_path +
-                                "'";
-    if (python.empty()) {
-      std::fprintf(stderr,
-                   "fcl_disk_report: no python3 with matplotlib found (apt-get install "
-                   "python3-matplotlib, or set FCL_DISK_PYTHON); plot skipped. Run:\n  %s\n",
-                   command.c_str());
-    } else if (std::system(command.c_str()) != 0) {
-      std::fprintf(stderr, "fcl_disk_report: plotting failed: %s\n", command.c_str());
-      return 1;
-    } else {
-      std::printf("wrote %s\n", png_path.c_str());
-    }
-  }
+  if (options.plot && !runPlot(FCL_DISK_PLOT_SCRIPT, csv_path, png_path)) return 1;
   if (options.shapes) return runShapeSection(options, clock_ns);
   return 0;
 }

@@ -112,7 +112,6 @@ struct DiskShapeSolution {
   double distance{0};     ///< |q - p|; 0 with p == q when the sets meet.
   double lower_bound{0};  ///< the certificate, <= the true distance.
   int iterations{0};
-  bool intersecting{false};
 };
 
 // ---------------------------------------------------------------------------
@@ -281,6 +280,18 @@ Vec2 shapeLineSearch(const Target& target, const DiskInShape& disk, const ShapeI
   return alpha * step;
 }
 
+/// The unit eigenvector of the symmetric 2x2 H for its larger eigenvalue, in
+/// closed form; the eigenvalues are mean +- spread.
+inline Vec2 steepEigenvector(const Mat2& H, double* mean, double* spread) {
+  *mean = 0.5 * (H(0, 0) + H(1, 1));
+  const double half_difference = 0.5 * (H(0, 0) - H(1, 1));
+  *spread = std::sqrt(half_difference * half_difference + H(0, 1) * H(0, 1));
+  const Vec2 v = half_difference >= 0.0 ? Vec2(half_difference + *spread, H(0, 1))
+                                        : Vec2(H(0, 1), *spread - half_difference);
+  const double length = v.norm();
+  return length > 0.0 ? Vec2(v / length) : Vec2(1.0, 0.0);
+}
+
 /// The step delta minimising the model g.delta + delta'(H + tau I)delta / 2
 /// subject to |s + delta| <= r, for H symmetric positive semidefinite (2x2).
 /// In H's eigenbasis (v_i, lambda_i) the model separates: the Newton step is
@@ -302,14 +313,9 @@ Vec2 shapeLineSearch(const Target& target, const DiskInShape& disk, const ShapeI
 /// direction, away from the optimum.
 inline Vec2 modelStepOnDisk(const Mat2& H, const Vec2& g_raw, const Vec2& s, double r,
                             double gradient_rounding) {
-  // H's eigenpairs in closed form: v1 for the larger eigenvalue, v2 = v1 turned.
-  const double mean = 0.5 * (H(0, 0) + H(1, 1));
-  const double half_difference = 0.5 * (H(0, 0) - H(1, 1));
-  const double spread = std::sqrt(half_difference * half_difference + H(0, 1) * H(0, 1));
-  Vec2 v1 = half_difference >= 0.0 ? Vec2(half_difference + spread, H(0, 1))
-                                   : Vec2(H(0, 1), spread - half_difference);
-  const double v1_length = v1.norm();
-  v1 = v1_length > 0.0 ? Vec2(v1 / v1_length) : Vec2(1.0, 0.0);
+  // H's eigenpairs: v1 for the larger eigenvalue, v2 = v1 turned.
+  double mean, spread;
+  const Vec2 v1 = steepEigenvector(H, &mean, &spread);
   const Vec2 v2(-v1.y(), v1.x());
   const double tau = kShapeModelRegularisation * (2.0 * mean + 1.0);
   const double lambda[2] = {mean + spread + tau, std::max(mean - spread, 0.0) + tau};
@@ -455,13 +461,8 @@ ShapeIterate searchAlongChord(const Target& target, const DiskInShape& disk, con
 template <typename Target>
 ShapeIterate searchInside(const Target& target, const DiskInShape& disk, ShapeIterate at) {
   for (int round = 0; round < kShapeInsideSearchRounds && at.psi > 0.0; ++round) {
-    const Mat2 H = planarHessian(at.hessian3, disk);
-    const double half_difference = 0.5 * (H(0, 0) - H(1, 1));
-    const double spread = std::sqrt(half_difference * half_difference + H(0, 1) * H(0, 1));
-    Vec2 steep = half_difference >= 0.0 ? Vec2(half_difference + spread, H(0, 1))
-                                        : Vec2(H(0, 1), spread - half_difference);
-    const double length = steep.norm();
-    steep = length > 0.0 ? Vec2(steep / length) : Vec2(1.0, 0.0);
+    double mean, spread;
+    const Vec2 steep = steepEigenvector(planarHessian(at.hessian3, disk), &mean, &spread);
     at = searchAlongChord(target, disk, at, Vec2(-steep.y(), steep.x()));
     at = searchAlongChord(target, disk, at, steep);
   }
@@ -503,18 +504,15 @@ bool faceCase(const Target& target, const DiskInShape& disk, double rho, double 
       if (!((solution->p - q).norm() <= rho + slack)) continue;
       solution->q = solution->p;
       solution->distance = solution->lower_bound = 0.0;
-      solution->intersecting = true;
       return true;
     }
     if (height <= 0.0) {  // touching, to rounding: the foot is a common point
       solution->q = solution->p;
       solution->distance = solution->lower_bound = 0.0;
-      solution->intersecting = true;
     } else {
       solution->q = lowest - rho * w;
       solution->distance = (solution->q - solution->p).norm();
       solution->lower_bound = height;
-      solution->intersecting = false;
     }
     return true;
   }
@@ -566,7 +564,6 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     // touching in one frame touches only to rounding in another): a common point.
     if (core_distance <= rho + touching) {
       solution.q = at.x;
-      solution.intersecting = true;
       return solution;
     }
     // The point of X + B_rho nearest x: from q towards x by rho.

@@ -55,7 +55,6 @@ DiskShapeDistanceResult<S> closedForm(const fcl::Transform3<S>& X_WS, const Vec3
   solution.q = q;
   solution.distance = distance;
   solution.lower_bound = distance;
-  solution.intersecting = distance == 0.0;
   return toWorld(X_WS, solution);
 }
 

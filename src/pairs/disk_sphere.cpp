@@ -26,7 +26,6 @@ DiskShapeSolution solveSphere(const DiskInShape& disk, double rho) {
   const double core_distance = solution.p.norm();
   if (core_distance <= rho) {
     solution.q = solution.p;
-    solution.intersecting = true;
     return solution;
   }
   solution.q = (rho / core_distance) * solution.p;
