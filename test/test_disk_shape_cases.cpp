@@ -125,6 +125,15 @@ TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, flat, at({0, 0, 0.5})).distance, 0.5, kExact);
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, flat, at({2.5, 0, 0})).distance, 1.0, kExact);
   EXPECT_FALSE(fcl_disk::diskShapeIntersect(1.0, kIdentity, flat, at({2.5, 0, 0})));
+  // A Convex collapsed to the segment from (0, 0, 0.3) to (0, 0, 2.4) (a box's
+  // eight vertices with zero width and depth, every face of zero area): 0.3.
+  auto segment = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
+      {0, 0, 0.3}, {0, 0, 0.3}, {0, 0, 0.3}, {0, 0, 0.3}, {0, 0, 2.4}, {0, 0, 2.4}, {0, 0, 2.4},
+      {0, 0, 2.4}});
+  auto box_faces = std::make_shared<std::vector<int>>(std::vector<int>{
+      4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Convex<double>(segment, 6, box_faces),
+                                          kIdentity).distance, 0.3, kExact);
   EXPECT_TRUE(fcl_disk::diskShapeIntersect(1.0, kIdentity, flat, at({1.2, 0, 0})));
 }
 

@@ -87,9 +87,19 @@ struct ConvexTarget {
     }
     if (farthest < 0) {
       // Inside every face plane: inside the solid, or on a flat polytope's plane,
-      // where the polygon decides.
+      // where its largest face (the polygon) decides; when every face has zero
+      // area (a polytope collapsed to a segment or a point) the nearest of the
+      // faces' edges does.
       if (!flat || largest_face < 0) return Projection{y, FactoredHessian()};
-      return ontoFace(y, faces[largest_face]);
+      if (faces[largest_face].unit_normal.squaredNorm() > 0.0) {
+        return ontoFace(y, faces[largest_face]);
+      }
+      Projection best = ontoFace(y, faces[0]);
+      for (std::size_t f = 1; f < faces.size(); ++f) {
+        const Projection on_face = ontoFace(y, faces[f]);
+        if ((y - on_face.q).squaredNorm() < (y - best.q).squaredNorm()) best = on_face;
+      }
+      return best;
     }
     Projection best = ontoFace(y, faces[farthest]);
     double best_distance = (y - best.q).norm();
