@@ -110,6 +110,27 @@ TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
   // An ellipsoid with a zero semi-axis is an ellipse: (0.5, 0.5, 0) lying flat at 0.8.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 0), above)
                   .distance, 0.8, kExact);
+  // An ellipsoid with two zero semi-axes is the segment z in [-0.45, 0.45] of its
+  // frame. Lying along x at height 0.8 over the face: 0.8. Standing upright at
+  // (3, 0, 0.2), crossing the disk's plane beside the rim: 3 - 1 = 2.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0, 0, 0.45),
+                                          at({0.3, 0, 0.8}, Vector3d::UnitX())).distance, 0.8, kExact);
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0, 0, 0.45),
+                                          at({3, 0, 0.2})).distance, 2.0, kExact);
+  // Tilted by 30 degrees about y at (0, 0, 1.2): its lower end at height
+  // 1.2 - 0.45 cos(30) over the face.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0, 0, 0.45),
+                                          at({0, 0, 1.2}, Vector3d(std::sin(M_PI / 6), 0, std::cos(M_PI / 6))))
+                  .distance, 1.2 - 0.45 * std::cos(M_PI / 6), kExact);
+  // A point sphere 1e-9 over the face: 1e-9, certified to the same bound (the
+  // direction from the foot to the centre is known only to ~eps / 1e-9 there;
+  // the disk's normal is exact).
+  {
+    const auto sphere = fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Sphere<double>(0),
+                                                    at({0.3, 0.2, 1e-9}));
+    EXPECT_NEAR(sphere.distance, 1e-9, kExact);
+    EXPECT_LE(sphere.certifiedGap(), kExact);
+  }
   // A zero-area triangle is its segment: from (2, 0, 0) to (3, 0, 0) (the third
   // vertex on it): 1 from the rim.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity,

@@ -18,14 +18,20 @@ struct EllipsoidTarget {
   Vec3 e;
 
   Projection project(const Vec3& y) const {
-    // Inside (on a zero axis, only y_i == 0 is inside).
+    // Within the ellipsoid's extent along its nonzero axes: the projection drops
+    // the zero-axis coordinates (for a solid ellipsoid, y itself), so D proj is
+    // the identity on the nonzero axes and psi's Hessian is 1 on the zero axes.
     double level = 0.0;
-    bool off_flat_axis = false;
+    Vec3 flat_axes = Vec3::Zero(), y_on_axes = y;
     for (int i = 0; i < 3; ++i) {
-      if (e[i] > 0.0) level += (y[i] / e[i]) * (y[i] / e[i]);
-      else off_flat_axis |= y[i] != 0.0;
+      if (e[i] > 0.0) {
+        level += (y[i] / e[i]) * (y[i] / e[i]);
+      } else {
+        flat_axes[i] = 1.0;
+        y_on_axes[i] = 0.0;
+      }
     }
-    if (level <= 1.0 && !off_flat_axis) return Projection{y, FactoredHessian()};
+    if (level <= 1.0) return Projection{y_on_axes, FactoredHessian::diagonalOf(flat_axes)};
     // q_i = e_i^2 y_i / (t + e_i^2) with t > 0 the root of
     // F(t) = sum (e_i y_i / (t + e_i^2))^2 = 1 (F decreasing). Newton runs on
     // phi(t) = 1 / sqrt(F(t)) - 1, which is nearly linear in t (exactly, for a
@@ -44,14 +50,15 @@ struct EllipsoidTarget {
       *derivative = -0.5 * df / (f * root);
       return 1.0 / root - 1.0;
     };
-    // Bracket: phi(lo) <= 0 <= phi(hi); lo = e_min |y| - e_max^2 is below the
-    // root, hi = |e o y| above it.
+    // Bracket: phi(lo) <= 0 <= phi(hi); lo = e_min |y'| - e_max^2 (y' = y on the
+    // nonzero axes: F(t) >= e_min^2 |y'|^2 / (t + e_max^2)^2) is below the root,
+    // hi = |e o y| above it (F(t) <= |e o y|^2 / t^2).
     double e_min = std::numeric_limits<double>::infinity(), e_max = 0.0;
     for (int i = 0; i < 3; ++i) {
       if (e[i] > 0.0) e_min = std::min(e_min, e[i]);
       e_max = std::max(e_max, e[i]);
     }
-    double lo = std::max(0.0, e_min * y.norm() - e_max * e_max);
+    double lo = std::max(0.0, e_min * y_on_axes.norm() - e_max * e_max);
     double hi = std::max(ey.norm(), lo);
     double t = lo;
     for (int step = 0; step < kMaxSecularSteps; ++step) {

@@ -30,8 +30,13 @@ DiskShapeSolution solveSphere(const DiskInShape& disk, double rho) {
   }
   solution.q = (rho / core_distance) * solution.p;
   solution.distance = core_distance - rho;
+  // Along p -> centre; and along the disk's normal towards the centre, which is
+  // that direction exactly when the foot is inside the rim and which, unlike
+  // -p, does not lose its digits when the centre is within rounding of the disk.
+  const Vec3 normal_towards_centre = disk.n.dot(solution.p) > 0.0 ? Vec3(-disk.n) : disk.n;
   solution.lower_bound =
-      std::max(0.0, certificateAlong(CentreTarget(), disk, rho, Vec3(-solution.p)));
+      std::max({0.0, certificateAlong(CentreTarget(), disk, rho, Vec3(-solution.p)),
+                certificateAlong(CentreTarget(), disk, rho, normal_towards_centre)});
   return solution;
 }
 
