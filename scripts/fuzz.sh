@@ -18,8 +18,8 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 SECONDS_PER_TARGET="${FCL_DISK_FUZZ_SECONDS:-60}"
 # libFuzzer's random seed. Fixed by default, so that a CI run repeats (nearly:
-# libFuzzer is not bit-for-bit deterministic) an exploration already run before
-# landing, and a finding fails CI only when code changed; 0 = a fresh random seed
+# libFuzzer is not bit-for-bit deterministic) an exploration that can be run
+# locally before pushing, and a finding fails CI only when code changed; 0 = a fresh random seed
 # per run, for longer campaigns hunting new inputs.
 SEED="${FCL_DISK_FUZZ_SEED:-1}"
 BUILD=build-fuzz

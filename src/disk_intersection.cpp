@@ -48,8 +48,8 @@ bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Trans
     const auto [depth, normal] = separatingTranslation(pair);
     contact->pos = (X_W1.translation().template cast<double>() + R_W1 * *common).template cast<S>();
     // Normalised: with a rotation accepted within kRotationDefectTolerance, a
-    // column of R_W1 R is unit only to a few times that defect (found by
-    // fuzz_disk_intersection: |normal| - 1 = 1.8e-7 at a defect of 9e-8), and
+    // column of R_W1 R is unit only to a few times that defect (|normal| - 1 =
+    // 1.8e-7 at a defect of 9e-8; corpus: regression-normal-defect), and
     // FCL's users take contact normals to be unit.
     contact->normal = (R_W1 * normal).normalized().template cast<S>();
     contact->penetration_depth = S(depth);

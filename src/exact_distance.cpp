@@ -673,7 +673,7 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
 /// direction (kSeparationRounding eps scale / d) costs at g's kinks, where g is
 /// Lipschitz with constant r1 + r2. Without the second test a flat optimum
 /// could be reported with the right distance and points off the optimal pair
-/// (docs/fuzzing.md, finding 8).
+/// (docs/fuzzing.md, regression input 8).
 bool pointsProven(const PairInFrame1& pair, const Solution& answer, double scale,
                   double face_lower_bound) {
   const double tolerance = kGapTolerance * scale;

@@ -747,8 +747,8 @@ void install() {
 // inside dlopen() for a plugin, so before any thread of the program can
 // dispatch through the tables. FCL reads its tables with plain loads; patching
 // them while another thread dispatches would be a data race (ThreadSanitizer
-// found it when the first Disk was built on one thread while another queried
-// spheres). A failure is not thrown here, where it would terminate the program
+// reports it if the tables are patched at the first Disk while another thread
+// queries spheres). A failure is not thrown here, where it would terminate the program
 // at load: call_once then stays unset, and the first Disk or
 // registerDiskFunctions() retries and throws the message.
 [[maybe_unused]] const bool g_installed_at_load = [] {

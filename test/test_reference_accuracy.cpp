@@ -370,11 +370,13 @@ INSTANTIATE_TEST_SUITE_P(AllFamilies, FamilyTest,
 
 // ---- nearly coplanar rims crossing in projection ------------------------------
 
-// Found by fuzz_exact_distance (CI, session 7): disk 2 (r = 0.125) touching disk
-// 1's rim, planes 1e-3 rad apart, both 1e9 from the origin. With the small disk
-// first, Newton crawled along the corner of psi and the rim search sampled past
-// the thin lens: 4.65e-8 for a distance of 4.38e-8. Both orders, and the pair
-// moved to the origin (c2 - c1 is exact: the solver does not see the offset).
+// A pair from fuzz_exact_distance: disk 2 (r = 0.125) touching disk 1's rim,
+// planes 1e-3 rad apart, both 1e9 from the origin. With the small disk first,
+// Newton crawls along the corner of psi and the global rim search samples past
+// the thin lens: Newton and the global search alone answer 4.65e-8 for a
+// distance of 4.38e-8 (docs/exact_distance.md, section 4). Both orders, and
+// the pair moved to the origin (c2 - c1 is exact: the solver does not see the
+// offset).
 TEST(RimsCrossing, FuzzFoundPairBothOrders) {
   fcl::Transform3<double> X_W1 = fcl::Transform3<double>::Identity(), X_W2 = X_W1;
   X_W1.linear() << -0.95993990207770863, -0.28020177781712002, 0.0015323534724373752,
@@ -404,9 +406,10 @@ TEST(RimsCrossing, FuzzFoundPairBothOrders) {
 // it does not (exact_distance.cpp, pointsProven: the certificate along the
 // pair's own q - p stays open). The solver then keeps the corner only as an
 // upper bound and lets Newton and the fallbacks finish: this drives that path,
-// which the family pairs never reach. These three reached it, in the order
-// given, among 80,000 queries of session 7's lens generator (seed 2; an
-// instrumented copy of the solver counted them); distances 5e-5 to 1e-3. Both
+// which the family pairs never reach. These three reach it, in the order
+// given, among 80,000 queries of a random generator of lens configurations
+// (seed 2, not in the repository; an instrumented copy of the solver counted
+// them); distances 5e-5 to 1e-3. Both
 // orders: the distance against the reference, the points on their disks,
 // |p - q| = d, and lower_bound below the distance. (Accepting these corners
 // would also pass: their points are within tolerance. The points check is the
@@ -478,8 +481,9 @@ TEST(RimsCrossing, CornerWithUnprovenPointsBothOrders) {
 // many more than the family tests draw, each as given, with the disks swapped
 // and under a common rigid motion, against the constructed distance: the
 // distance, both points on their disks, |p - q| == distance and the certificate
-// below the distance. Before the local rim search (exact_distance.cpp) 3 of
-// these 4000 double pairs failed, by up to 1.5e-11 * scale.
+// below the distance. Without the local rim search and disk 2's side
+// (exact_distance.cpp), Newton and the global rim search alone fail 3 of these
+// 4000 double pairs, by up to 1.5e-11 * scale.
 template <typename S>
 void checkRimsCrossing(double relative_tolerance) {
   constexpr int kNearParallelCases = 16000;  // a quarter are rims_crossing

@@ -234,9 +234,8 @@ constexpr double kDefectNormFactor = 3.0;
 /// What an accepted rotation's defect may cost in distance and in points,
 /// beyond the solvers' bounds: disk_pair.h, "about defect * (r1 + r2 +
 /// |c1 - c2|)" (R^T is used as the inverse, so disk 2 mapped into disk 1's
-/// frame and back moves by (R_W1 R_W1^T - I)(c2 - c1); an earlier statement,
-/// defect * (r1 + r2), was refuted by this fuzzer:
-/// corpus/*/regression-defect-times-centre-distance). "About": the defect
+/// frame and back moves by (R_W1 R_W1^T - I)(c2 - c1), so defect * (r1 + r2) alone is
+/// not enough: corpus/*/regression-defect-times-centre-distance). "About": the defect
 /// bounds entries, kDefectNormFactor turns it into a norm.
 template <typename S>
 double defectCost(const DiskPairInput<S>& in) {

@@ -69,10 +69,9 @@ void checkExactDistance(const DiskPairInput<S>& in) {
   // conditioned, and next to degenerate configurations the Lipschitz constant
   // r1 + r2 of g at its kinks times the error of its direction, sqrt(eps) or
   // eps scale / d: (r1 + r2)(sqrt(eps) + 8 eps scale / d), eps of S
-  // (test_tolerances.h). The header writes (r1 + r2)(sqrt(eps) scale +
-  // 8 eps scale^2 / d), a length squared: the same at scale 1 (its old floor),
-  // 1e5x too small at scale 1e-5, where this fuzzer found a correct answer
-  // outside it (corpus/fuzz_exact_distance/regression-certificate-small-scale).
+  // (test_tolerances.h). In these units the bound holds at every scale; the
+  // form with scale and scale^2 / d (a length squared) is 1e5x too small at
+  // scale 1e-5 (corpus/fuzz_exact_distance/regression-certificate-small-scale).
   const double conditioning =
       d > 0 ? (r1 + r2) * (E::kCertificateFlatOptimum +
                            E::kCertificateSmallDistance * scale.distance / d)

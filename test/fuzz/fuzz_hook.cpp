@@ -34,9 +34,8 @@
 
 /// A NaN answer must reach the caller as result.min_distance = NaN. FCL's
 /// DistanceResult::update() skips a NaN (`min_distance > NaN` is false), so
-/// before src/fcl_hook.cpp wrote it directly (commit 08042c3) min_distance
-/// stayed at numeric_limits::max(). 1 (the default) requires NaN; 0 also
-/// accepts max(), for fuzzing an fcl_disk older than that fix (CMake option
+/// src/fcl_hook.cpp writes it directly. 1 (the default) requires NaN; 0 also
+/// accepts numeric_limits::max(), what update() alone leaves (CMake option
 /// FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN).
 #ifndef FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN
 #define FCL_DISK_FUZZ_HOOK_PROPAGATES_NAN 1
@@ -163,8 +162,8 @@ void checkBroadphase(const DiskPairInput<S>& in, DiskDistanceMethod method, int 
     radii.push_back(radii[radii.size() - 2]);
   }
   // FCL's broadphase squares coordinate differences in S (AABB distances):
-  // past sqrt(max()) / 4 they overflow to inf and prune pairs wrongly (found
-  // for float at 1.6e19: corpus/fuzz_hook/regression-float-broadphase-overflow),
+  // past sqrt(max()) / 4 they overflow to inf and prune pairs wrongly (float
+  // at 1.6e19: corpus/fuzz_hook/regression-float-broadphase-overflow),
   // which is FCL's limit, not fcl_disk's.
   const double broadphase_limit = std::sqrt(double(std::numeric_limits<S>::max())) / 4;
   for (std::size_t i = 0; i < poses.size(); ++i) {
