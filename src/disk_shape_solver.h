@@ -12,6 +12,11 @@
 //   Vec3 support(const Vec3& w) const;        // a point of X maximising w.y
 // and the solver works on X inflated by `rho` >= 0 (a sphere is a point
 // inflated, a capsule a segment): dist(x, X + B_rho) = max(dist(x, X) - rho, 0).
+// A Target whose boundary holds flat circular ends (a cylinder's caps, a cone's
+// base) may also provide
+//   std::array<FlatEnd, N> flatEnds() const;
+// whose disk-disk answers (exactDiskDistance) are candidates where the
+// iteration leaves the certificate open (FlatEnd, tryFlatEnds below).
 #pragma once
 
 #include <Eigen/Core>
@@ -24,6 +29,7 @@
 #include <type_traits>
 
 #include "fcl_disk/disk_shape_distance.h"
+#include "fcl_disk/exact_distance.h"
 #include "pair_in_frame1.h"
 
 namespace fcl_disk {
@@ -524,6 +530,58 @@ bool faceCase(const Target& target, const DiskInShape& disk, double rho, double 
 /// answer; the result is for X inflated by rho (>= 0). `scale` sets every
 /// tolerance. Every iterate is a feasible pair, so `distance` is always an upper
 /// bound and `lower_bound` a lower bound of the true distance.
+/// A flat circular end of X: the disk of `radius` about (0, 0, z) in the plane
+/// z = const of X's frame, part of X's boundary.
+struct FlatEnd {
+  double z;
+  double radius;
+};
+
+template <typename Target, typename = void>
+struct HasFlatEnds : std::false_type {};
+template <typename Target>
+struct HasFlatEnds<Target, std::void_t<decltype(std::declval<const Target&>().flatEnds())>>
+    : std::true_type {};
+
+/// Candidates from X's flat ends, for a disk nearly parallel to one whose rim
+/// crosses the end's rim in projection: the optimum sits at a corner of the
+/// lens where the two overlap, where psi's curvature jumps and the iteration
+/// crawls (docs/disk_shape_distance.md, section 3). The exact disk-disk solver
+/// finds that corner (docs/exact_distance.md, section 4); its disk point is
+/// evaluated as an iterate (kept when nearer) and certified along the usual
+/// directions plus the rim-rim one, t_disk x t_end (normal to both rims'
+/// tangents: the certificate's exact direction at a rim-rim optimum, which
+/// q - x knows only to about eps scale / d). An end point is a point of X, so a
+/// candidate is always feasible; its certificate bounds dist(disk, X) itself.
+/// Only for rho == 0 (the ends are X's, not X + B_rho's).
+template <typename Target>
+void tryFlatEnds(const Target& target, const DiskInShape& disk, double gap_tolerance, double scale,
+                 ShapeIterate* at, double* lower) {
+  fcl::Transform3<double> X_D = fcl::Transform3<double>::Identity();
+  X_D.linear().col(0) = disk.u;
+  X_D.linear().col(1) = disk.v;
+  X_D.linear().col(2) = disk.n;
+  X_D.translation() = disk.c;
+  for (const FlatEnd& end : target.flatEnds()) {
+    fcl::Transform3<double> X_E = fcl::Transform3<double>::Identity();
+    X_E.translation() = Vec3(0.0, 0.0, end.z);
+    const DiskDistanceResult<double> pair = exactDiskDistance(disk.r, X_D, end.radius, X_E);
+    if (!std::isfinite(pair.distance)) continue;
+    const Vec2 s = disk.nearest(pair.p_W1);
+    const ShapeIterate candidate = evaluateAt(target, disk, s);
+    const double distance = std::sqrt(2.0 * candidate.psi);
+    double bound = certificateAt(target, disk, 0.0, candidate, distance, gap_tolerance, scale,
+                                 /*returned=*/true);
+    const Vec3 rim_tangent = disk.n.cross(candidate.x - disk.c);
+    const Vec3 end_tangent = Vec3::UnitZ().cross(Vec3(pair.p_W2.x(), pair.p_W2.y(), 0.0));
+    Vec3 w = rim_tangent.cross(end_tangent);
+    if (w.dot(candidate.q - candidate.x) < 0.0) w = -w;
+    bound = std::max(bound, certificateAlong(target, disk, 0.0, w));
+    *lower = std::max(*lower, bound);
+    if (candidate.psi < at->psi) *at = candidate;
+  }
+}
+
 template <typename Target>
 DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, double rho,
                                  double scale, SolverGoal goal) {
@@ -544,11 +602,15 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
   auto finish = [&](int iteration, double lower) {
     // Still open: search by values, along the rim or inside the disk. The
     // intersection goal needs it only while its answer is undecided.
-    const double open_distance = std::sqrt(2.0 * at.psi) - rho;
-    const bool undecided = goal == SolverGoal::distance
-                               ? open_distance - lower > kShapeFallbackGap * scale
-                               : open_distance > touching && !(lower > touching);
-    if (undecided) {
+    auto undecided = [&] {
+      const double open_distance = std::sqrt(2.0 * at.psi) - rho;
+      return goal == SolverGoal::distance ? open_distance - lower > kShapeFallbackGap * scale
+                                          : open_distance > touching && !(lower > touching);
+    };
+    if constexpr (HasFlatEnds<Target>::value) {
+      if (rho == 0.0 && undecided()) tryFlatEnds(target, disk, gap_tolerance, scale, &at, &lower);
+    }
+    if (undecided()) {
       const double psi_before = at.psi;
       at = at.s.norm() >= r * (1.0 - kShapeOnRim) ? searchAlongRim(target, disk, at)
                                                  : searchInside(target, disk, at);

@@ -12,6 +12,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <random>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -239,6 +241,62 @@ TEST(DiskShapeCases, GroundHalfspaceAndPlaneThroughFcl) {
         EXPECT_NEAR(collision.getContact(0).normal.z(), -1.0, kExact);  // from the disk to the ground
       }
     }
+  }
+}
+
+/// A disk nearly parallel to a cylinder's cap or a cone's base, entirely on the
+/// far side of its plane, with the rims crossing in projection: the shape's
+/// nearest points lie on that flat end, so the distance is the disk-disk
+/// distance to the end (exactDiskDistance, certified to 1e-14 of its scene);
+/// the optimum sits at a corner of the lens where the projections overlap.
+/// Tilts 1e-8..0.1 rad, gaps 1e-9..0.1 of the radius, double and float.
+template <typename S>
+void checkNearlyParallelEnds(bool cone) {
+  std::mt19937_64 rng(cone ? 11 : 12);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  // Float: the pose is rounded to float before both solvers see it; answers
+  // agree to a few float ulps of the scene.
+  const double tolerance = std::is_same<S, float>::value ? 8 * 1.2e-7 : kExact;
+  int failures = 0;
+  for (int i = 0; i < 2000 && failures < 5; ++i) {
+    const double R = 0.2 + unit(rng), h = 0.2 + unit(rng), r = 0.2 + unit(rng);
+    const double tilt = std::pow(10.0, -8 + 7 * unit(rng));
+    const double azimuth = 2 * M_PI * unit(rng), angle = 2 * M_PI * unit(rng);
+    const double lo = std::abs(R - r), hi = R + r;  // centre offsets whose rims cross
+    const double offset = lo + (hi - lo) * (0.05 + 0.9 * unit(rng));
+    const Vector3d normal(std::sin(tilt) * std::cos(azimuth), std::sin(tilt) * std::sin(azimuth),
+                          std::cos(tilt));
+    const double end = cone ? -h / 2 : h / 2;  // the cone's base, the cylinder's top cap
+    const double side = cone ? -1.0 : 1.0;     // the far side of that plane
+    const double gap = r * std::pow(10.0, -9 + 8 * unit(rng));
+    const Transform3d X_WD = at({offset * std::cos(angle), offset * std::sin(angle),
+                                 end + side * (gap + r * std::sin(tilt))},
+                                normal);
+    const fcl::Transform3<S> X_WD_S = X_WD.cast<S>();
+    Transform3d X_end = kIdentity;
+    X_end.translation().z() = end;
+    const auto truth = fcl_disk::exactDiskDistance(double(S(r)), fcl::Transform3<double>(X_WD_S.template cast<double>()),
+                                                   double(S(R)), X_end.cast<double>());
+    const auto result =
+        cone ? fcl_disk::diskShapeDistance(S(r), X_WD_S, fcl::Cone<S>(S(R), S(h)), fcl::Transform3<S>::Identity())
+             : fcl_disk::diskShapeDistance(S(r), X_WD_S, fcl::Cylinder<S>(S(R), S(h)),
+                                           fcl::Transform3<S>::Identity());
+    const double scale = r + std::hypot(R, h / 2) + X_WD.translation().norm();
+    const bool ok = std::abs(double(result.distance) - truth.distance) <= tolerance * scale &&
+                    double(result.certifiedGap()) <= tolerance * scale;
+    if (!ok) {
+      ++failures;
+      ADD_FAILURE() << (cone ? "cone" : "cylinder") << " case " << i << ": distance "
+                    << double(result.distance) << " lower " << double(result.lower_bound)
+                    << " disk-disk " << truth.distance << " (tilt " << tilt << ", gap " << gap << ")";
+    }
+  }
+}
+
+TEST(DiskShapeCases, NearlyParallelFlatEndsWithRimsCrossing) {
+  for (const bool cone : {false, true}) {
+    checkNearlyParallelEnds<double>(cone);
+    checkNearlyParallelEnds<float>(cone);
   }
 }
 

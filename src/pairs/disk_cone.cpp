@@ -71,6 +71,9 @@ struct ConeTarget {
     // Ties take the apex.
     return w_S.dot(rim) > w_S.dot(apex) ? rim : apex;
   }
+
+  /// The base: a candidate where a nearly parallel disk's rim crosses its rim.
+  std::array<FlatEnd, 1> flatEnds() const { return {FlatEnd{-half_length, radius}}; }
 };
 
 template <typename S>

@@ -36,6 +36,11 @@ struct CylinderTarget {
                                   : Vec3(radius, 0.0, 0.0);
     return rim + Vec3(0.0, 0.0, w_S.z() < 0.0 ? -half_length : half_length);
   }
+
+  /// The caps: candidates where a nearly parallel disk's rim crosses a cap's rim.
+  std::array<FlatEnd, 2> flatEnds() const {
+    return {FlatEnd{-half_length, radius}, FlatEnd{half_length, radius}};
+  }
 };
 
 template <typename S>
