@@ -12,11 +12,13 @@
 //   Vec3 support(const Vec3& w) const;        // a point of X maximising w.y
 // and the solver works on X inflated by `rho` >= 0 (a sphere is a point
 // inflated, a capsule a segment): dist(x, X + B_rho) = max(dist(x, X) - rho, 0).
-// A Target whose boundary holds flat circular ends (a cylinder's caps, a cone's
-// base) may also provide
-//   std::array<FlatEnd, N> flatEnds() const;
-// whose disk-disk answers (exactDiskDistance) are candidates where the
-// iteration leaves the certificate open (FlatEnd, tryFlatEnds below).
+// Where the iteration leaves the certificate open, the solver tries candidates
+// at the kinks of psi that make it crawl, from the Target's flat features, if
+// it provides them (docs/disk_shape_distance.md, section 3, "Flat features"):
+//   std::array<FlatEnd, N> flatEnds() const;  // circular ends (cylinder, cone)
+//   template <typename Visit> void forEachFace(Visit&& visit) const;
+//     // polygonal faces (box, triangle, convex):
+//     // visit(unit outward normal, vertex count, vertex(i) -> Vec3)
 #pragma once
 
 #include <Eigen/Core>
@@ -537,6 +539,25 @@ struct FlatEnd {
   double radius;
 };
 
+/// A flat feature's candidate: the disk point at s evaluated as an iterate
+/// (kept when nearer than *at) and certified along the usual directions plus
+/// `feature_direction`, the exact separation direction at a rim-against-feature
+/// optimum (which q - x knows only to about eps scale / d).
+template <typename Target>
+void offerCandidate(const Target& target, const DiskInShape& disk, const Vec2& s,
+                    const Vec3& feature_direction, double gap_tolerance, double scale,
+                    ShapeIterate* at, double* lower) {
+  const ShapeIterate candidate = evaluateAt(target, disk, s);
+  const double distance = std::sqrt(2.0 * candidate.psi);
+  double bound = certificateAt(target, disk, 0.0, candidate, distance, gap_tolerance, scale,
+                               /*returned=*/true);
+  const Vec3 w = feature_direction.dot(candidate.q - candidate.x) < 0.0 ? Vec3(-feature_direction)
+                                                                       : feature_direction;
+  bound = std::max(bound, certificateAlong(target, disk, 0.0, w));
+  *lower = std::max(*lower, bound);
+  if (candidate.psi < at->psi) *at = candidate;
+}
+
 template <typename Target, typename = void>
 struct HasFlatEnds : std::false_type {};
 template <typename Target>
@@ -568,18 +589,101 @@ void tryFlatEnds(const Target& target, const DiskInShape& disk, double gap_toler
     const DiskDistanceResult<double> pair = exactDiskDistance(disk.r, X_D, end.radius, X_E);
     if (!std::isfinite(pair.distance)) continue;
     const Vec2 s = disk.nearest(pair.p_W1);
-    const ShapeIterate candidate = evaluateAt(target, disk, s);
-    const double distance = std::sqrt(2.0 * candidate.psi);
-    double bound = certificateAt(target, disk, 0.0, candidate, distance, gap_tolerance, scale,
-                                 /*returned=*/true);
-    const Vec3 rim_tangent = disk.n.cross(candidate.x - disk.c);
+    const Vec3 rim_tangent = disk.n.cross(disk.point(s) - disk.c);
     const Vec3 end_tangent = Vec3::UnitZ().cross(Vec3(pair.p_W2.x(), pair.p_W2.y(), 0.0));
-    Vec3 w = rim_tangent.cross(end_tangent);
-    if (w.dot(candidate.q - candidate.x) < 0.0) w = -w;
-    bound = std::max(bound, certificateAlong(target, disk, 0.0, w));
-    *lower = std::max(*lower, bound);
-    if (candidate.psi < at->psi) *at = candidate;
+    offerCandidate(target, disk, s, rim_tangent.cross(end_tangent), gap_tolerance, scale, at, lower);
   }
+}
+
+/// A visitor type for detecting forEachFace (C++17 has no lambdas in
+/// unevaluated contexts).
+struct FaceVisitorProbe {
+  template <typename Vertex>
+  void operator()(const Vec3&, int, const Vertex&) const {}
+};
+template <typename Target, typename = void>
+struct HasFaces : std::false_type {};
+template <typename Target>
+struct HasFaces<Target, std::void_t<decltype(std::declval<const Target&>().forEachFace(
+                            FaceVisitorProbe()))>> : std::true_type {};
+
+/// Faces within this angle (cosine) of parallel to the disk get the polygon
+/// candidates: where the rim crosses a face's edge the optimum's curvature
+/// jumps by 1 / tilt^2; beyond 0.1 rad (the disk-disk solver's kTiltedStart) the
+/// iteration handles the kink in a few steps.
+constexpr double kNearlyParallelFaceCosine = 0.995;
+/// Newton steps along the rim on the squared distance to an edge's line: the
+/// crossing is exact for a disk parallel to the face and off by O(tilt^2 r)
+/// otherwise; quadratic convergence needs two or three.
+constexpr int kRimLineNewtonSteps = 4;
+
+/// Candidates from X's polygonal faces nearly parallel to the disk: the rim
+/// points above each face edge (where psi along the rim has a kink: over the
+/// face it is the height, past the edge the distance to the edge), moved by
+/// Newton along the rim to the minimum of the squared distance to the edge's
+/// line (smooth across the kink), certified along t_rim x edge; the feet of
+/// the face's vertices on the disk (a vertex under the disk's face); and the
+/// disk's rim point lowest towards the face (over the face's interior). The
+/// polygon analogue of the lens corners (tryFlatEnds).
+template <typename Target>
+void tryFaces(const Target& target, const DiskInShape& disk, double gap_tolerance, double scale,
+              ShapeIterate* at, double* lower) {
+  const double r = disk.r;
+  target.forEachFace([&](const Vec3& normal, int count, const auto& vertex) {
+    if (!(std::abs(disk.n.dot(normal)) >= kNearlyParallelFaceCosine)) return;
+    // The disk's point lowest towards the face (its rim point down the tilt):
+    // optimal, certified along the face normal, when its foot is on the face.
+    const Vec3 towards_disk = normal.dot(disk.c - vertex(0)) >= 0.0 ? normal : Vec3(-normal);
+    const Vec2 downhill = disk.inPlane(towards_disk);
+    const double downhill_length = downhill.norm();
+    if (downhill_length > 0.0) {
+      offerCandidate(target, disk, Vec2(-(r / downhill_length) * downhill), towards_disk,
+                     gap_tolerance, scale, at, lower);
+    }
+    for (int i = 0; i < count; ++i) {
+      const Vec3 a = vertex(i);
+      offerCandidate(target, disk, disk.nearest(a), disk.n, gap_tolerance, scale, at, lower);
+      const Vec3 edge = vertex((i + 1) % count) - a;
+      const double length = edge.norm();
+      if (!(length > 0.0)) continue;
+      const Vec3 e = edge / length;
+      // Rim points x(theta) = c + r (cos u + sin v) on the plane through the
+      // edge normal to the face: alpha cos + beta sin = -k.
+      const Vec3 across = e.cross(normal);
+      const double alpha = r * disk.u.dot(across), beta = r * disk.v.dot(across);
+      const double k = (disk.c - a).dot(across);
+      const double amplitude = std::hypot(alpha, beta);
+      if (!(amplitude > 0.0) || !(std::abs(k) <= amplitude)) continue;
+      const double cosine = -k / amplitude;
+      const double sine = std::sqrt(std::max(0.0, (1.0 - cosine) * (1.0 + cosine)));
+      const Vec2 base(alpha / amplitude, beta / amplitude);
+      const Vec2 base_perp(-base.y(), base.x());
+      for (const double side : {1.0, -1.0}) {
+        Vec2 radial = cosine * base + (side * sine) * base_perp;
+        const double along = (disk.point(r * radial) - a).dot(e);
+        if (!(along >= 0.0 && along <= length)) continue;  // crosses the line, not the edge
+        for (int step = 0; step < kRimLineNewtonSteps; ++step) {
+          // phi = |y_perp|^2 / 2, y = x - a; x' = r t, x'' = -(x - c).
+          const Vec2 tangent(-radial.y(), radial.x());
+          const Vec3 x = disk.point(r * radial);
+          const Vec3 dx = r * (tangent.x() * disk.u + tangent.y() * disk.v);
+          const Vec3 y = x - a;
+          const Vec3 y_perp = y - y.dot(e) * e;
+          const Vec3 dx_perp = dx - dx.dot(e) * e;
+          const double slope = y_perp.dot(dx);
+          const double curvature = dx_perp.squaredNorm() - y_perp.dot(x - disk.c);
+          if (!(curvature > 0.0)) break;
+          const double dtheta = std::clamp(-slope / curvature, -kShapeMaxRimStep, kShapeMaxRimStep);
+          const Vec2 turn = cayleyTurn(dtheta);
+          radial = turn.x() * radial + turn.y() * tangent;
+          if (std::abs(dtheta) * r <= kShapeGradientRounding * scale) break;
+        }
+        const Vec3 rim_tangent = disk.n.cross(disk.point(r * radial) - disk.c);
+        offerCandidate(target, disk, Vec2(r * radial), rim_tangent.cross(e), gap_tolerance, scale,
+                       at, lower);
+      }
+    }
+  });
 }
 
 template <typename Target>
@@ -609,6 +713,9 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     };
     if constexpr (HasFlatEnds<Target>::value) {
       if (rho == 0.0 && undecided()) tryFlatEnds(target, disk, gap_tolerance, scale, &at, &lower);
+    }
+    if constexpr (HasFaces<Target>::value) {
+      if (rho == 0.0 && undecided()) tryFaces(target, disk, gap_tolerance, scale, &at, &lower);
     }
     if (undecided()) {
       const double psi_before = at.psi;

@@ -16,6 +16,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "reference_disk_shape.h"
+
 namespace {
 
 using Transform3d = fcl::Transform3<double>;
@@ -298,6 +300,122 @@ TEST(DiskShapeCases, NearlyParallelFlatEndsWithRimsCrossing) {
     checkNearlyParallelEnds<double>(cone);
     checkNearlyParallelEnds<float>(cone);
   }
+}
+
+/// A disk nearly parallel to a polygonal face (a box's top, a triangle, a
+/// Convex box's top) just above it, its centre near an edge or corner: the
+/// optimum is a rim point over an edge (psi's curvature jumps by 1 / tilt^2
+/// there), a vertex under the disk's face, or the rim's lowest point over the
+/// face. Tilts 1e-8..0.1 rad, gaps 1e-9..0.1 of the radius. Every answer's
+/// certificate closes to 1e-12 of the scene (so the distance is within that of
+/// the truth); the first 50 per shape also against the independent long-double
+/// reference (reference_disk_shape.h).
+template <typename S>
+void checkNearlyParallelFaces(int kind) {
+  namespace ref = fcl_disk_test::ref;
+  std::mt19937_64 rng(20 + kind);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double tolerance = std::is_same<S, float>::value ? 8 * 1.2e-7 : kExact;
+  const char* name = kind == 0 ? "box" : kind == 1 ? "triangle" : "convex";
+  int failures = 0;
+  for (int i = 0; i < 2000 && failures < 5; ++i) {
+    const double a = 0.2 + unit(rng), b = 0.2 + unit(rng), h = 0.2 + unit(rng), r = 0.2 + unit(rng);
+    const double tilt = std::pow(10.0, -8 + 7 * unit(rng));
+    const double azimuth = 2 * M_PI * unit(rng);
+    const Vector3d normal(std::sin(tilt) * std::cos(azimuth), std::sin(tilt) * std::sin(azimuth),
+                          std::cos(tilt));
+    const double gap = r * std::pow(10.0, -9 + 8 * unit(rng));
+    const double x = (unit(rng) < 0.5 ? -1 : 1) * (a / 2 + r * (2 * unit(rng) - 1));
+    const double y = (b / 2) * (2 * unit(rng) - 1) +
+                     (unit(rng) < 0.3 ? (unit(rng) < 0.5 ? -1 : 1) * (b / 2) : 0);
+    const Transform3d X_WD = at({x, y, h / 2 + gap + r * std::sin(tilt)}, normal);
+    const fcl::Transform3<S> X_WD_S = X_WD.cast<S>();
+    const fcl::Transform3<S> X_WS = fcl::Transform3<S>::Identity();
+    // The shapes as stored in S, for the reference.
+    const double as = double(S(a)), bs = double(S(b)), hs = double(S(h));
+    const std::vector<Vector3d> corners = {{-as / 2, -bs / 2, -hs / 2}, {as / 2, -bs / 2, -hs / 2},
+                                           {as / 2, bs / 2, -hs / 2},   {-as / 2, bs / 2, -hs / 2},
+                                           {-as / 2, -bs / 2, hs / 2},  {as / 2, -bs / 2, hs / 2},
+                                           {as / 2, bs / 2, hs / 2},    {-as / 2, bs / 2, hs / 2}};
+    const std::vector<std::vector<int>> box_faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
+                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    const Vector3d ta(-as / 2, -bs / 2, hs / 2), tb(as / 2, -bs / 2, hs / 2), tc(0, bs / 2, hs / 2);
+    fcl_disk::DiskShapeDistanceResult<S> result;
+    if (kind == 0) {
+      result = fcl_disk::diskShapeDistance(S(r), X_WD_S, fcl::Box<S>(S(a), S(b), S(h)), X_WS);
+    } else if (kind == 1) {
+      result = fcl_disk::diskShapeDistance(
+          S(r), X_WD_S, fcl::TriangleP<S>(ta.cast<S>(), tb.cast<S>(), tc.cast<S>()), X_WS);
+    } else {
+      auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+      for (const Vector3d& v : corners) vertices->push_back(v.cast<S>());
+      auto faces = std::make_shared<std::vector<int>>();
+      for (const auto& f : box_faces) {
+        faces->push_back(4);
+        faces->insert(faces->end(), f.begin(), f.end());
+      }
+      result = fcl_disk::diskShapeDistance(S(r), X_WD_S, fcl::Convex<S>(vertices, 6, faces), X_WS);
+    }
+    const double scale = r + 0.5 * std::sqrt(a * a + b * b + h * h) + X_WD.translation().norm();
+    bool ok = double(result.certifiedGap()) <= tolerance * scale;
+    double reference = -1;
+    if (ok && i < 50) {
+      const ref::Disk disk = ref::makeDisk(double(S(r)), X_WD_S.linear().template cast<ref::Real>(),
+                                           X_WD_S.translation().template cast<ref::Real>());
+      ref::Result truth;
+      if (kind == 1) {
+        ref::TriangleP triangle;
+        triangle.a = ta.cast<ref::Real>(), triangle.b = tb.cast<ref::Real>(), triangle.c = tc.cast<ref::Real>();
+        truth = ref::referenceDistance(disk, triangle);
+      } else {
+        ref::Box box;
+        box.side = ref::V3(as, bs, hs);
+        truth = ref::referenceDistance(disk, box);
+      }
+      reference = double(truth.distance);
+      ok = std::abs(double(result.distance) - reference) <= tolerance * scale;
+    }
+    if (!ok) {
+      ++failures;
+      ADD_FAILURE() << name << " case " << i << ": distance " << double(result.distance) << " lower "
+                    << double(result.lower_bound) << " reference " << reference << " (tilt " << tilt
+                    << ", gap " << gap << ")";
+    }
+  }
+}
+
+TEST(DiskShapeCases, NearlyParallelPolygonFaces) {
+  for (int kind = 0; kind < 3; ++kind) {
+    checkNearlyParallelFaces<double>(kind);
+    checkNearlyParallelFaces<float>(kind);
+  }
+}
+
+TEST(DiskShapeCases, UncertainShapesGiveCostSourcesAsFcl) {
+  // FCL (ShapeCollisionTraversalNode::leafTesting): occupied shapes give contacts
+  // (and cost sources when asked); shapes that are neither occupied nor free
+  // (0 < cost_density < 1 with FCL's default thresholds) give only a cost
+  // source when they intersect; a free shape gives nothing.
+  auto disk = std::make_shared<fcl_disk::Diskd>(0.5);
+  auto box = std::make_shared<fcl::Boxd>(1, 1, 1);
+  disk->cost_density = 0.5;
+  box->cost_density = 0.5;
+  fcl::CollisionRequestd request(1, false, 4, /*enable_cost=*/true);
+  const auto collide = [&](const Transform3d& X_WB) {
+    fcl::CollisionObjectd a(disk, kIdentity), b(box, X_WB);
+    fcl::CollisionResultd result;
+    fcl::collide(&a, &b, request, result);
+    std::vector<fcl::CostSourced> costs;
+    result.getCostSources(costs);
+    EXPECT_EQ(result.numContacts(), 0u);
+    return costs;
+  };
+  const auto overlapping = collide(at({0.2, 0, 0.3}));
+  ASSERT_EQ(overlapping.size(), 1u);
+  EXPECT_EQ(overlapping[0].cost_density, 0.25);
+  EXPECT_TRUE(collide(at({0, 0, 2})).empty());  // apart
+  box->cost_density = 0.0;                        // free
+  EXPECT_TRUE(collide(at({0.2, 0, 0.3})).empty());
 }
 
 }  // namespace

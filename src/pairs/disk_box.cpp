@@ -26,6 +26,26 @@ struct BoxTarget {
     return Vec3(w.x() < 0.0 ? -half.x() : half.x(), w.y() < 0.0 ? -half.y() : half.y(),
                 w.z() < 0.0 ? -half.z() : half.z());
   }
+
+  /// The six faces, for the nearly-parallel candidates: normal +-e_i, corners
+  /// in order around the face.
+  template <typename Visit>
+  void forEachFace(Visit&& visit) const {
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      for (const double side : {1.0, -1.0}) {
+        Vec3 normal = Vec3::Zero();
+        normal[i] = side;
+        visit(normal, 4, [&](int corner) {
+          Vec3 x;
+          x[i] = side * half[i];
+          x[j] = (corner == 0 || corner == 3) ? half[j] : -half[j];
+          x[k] = corner < 2 ? half[k] : -half[k];
+          return x;
+        });
+      }
+    }
+  }
 };
 
 template <typename S>

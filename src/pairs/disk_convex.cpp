@@ -125,6 +125,15 @@ struct ConvexTarget {
     }
     return vertices[best].template cast<double>();
   }
+
+  /// The faces of nonzero area, for the nearly-parallel candidates.
+  template <typename Visit>
+  void forEachFace(Visit&& visit) const {
+    for (const ConvexFace& face : faces) {
+      if (!(face.unit_normal.squaredNorm() > 0.0)) continue;
+      visit(face.unit_normal, face.count, [&](int i) { return vertex(face.index[i]); });
+    }
+  }
 };
 
 template <typename S>

@@ -66,6 +66,14 @@ struct TriangleTarget {
     }
     return vertices[best];
   }
+
+  /// The face, for the nearly-parallel candidates (none when degenerate).
+  template <typename Visit>
+  void forEachFace(Visit&& visit) const {
+    const double area = normal.norm();
+    if (!(area > 0.0)) return;
+    visit(Vec3(normal / area), 3, [this](int i) { return vertices[i]; });
+  }
 };
 
 template <typename S>
