@@ -141,15 +141,30 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
 }
 
 /// FCL's shape-pair collision (ShapeCollisionTraversalNode::leafTesting), with
-/// `intersect(&contact)` deciding the pair: a contact when requested and room
-/// is left, a cost source from the overlap of the AABBs.
+/// `intersect(&contact)` deciding the pair: between occupied shapes, a contact
+/// when requested and room is left, and a cost source from the overlap of the
+/// AABBs (each shape's computeBV: a Disk's is its tight box); between shapes
+/// that are uncertain (neither occupied nor free), only the cost source.
 template <typename S, typename Shape1, typename Shape2, typename Intersect>
 std::size_t answerCollision(const Shape1& shape1, const Transform3<S>& X_W1, const Shape2& shape2,
                             const Transform3<S>& X_W2, const fcl::CollisionRequest<S>& request,
                             fcl::CollisionResult<S>& result, Intersect intersect) {
   if (request.isSatisfied(result)) return result.numContacts();
   ++t_disk_answers;
-  if (!(shape1.isOccupied() && shape2.isOccupied())) return result.numContacts();
+  const auto add_cost_source = [&] {
+    fcl::AABB<S> aabb1, aabb2, overlap;
+    fcl::computeBV(shape1, X_W1, aabb1);
+    fcl::computeBV(shape2, X_W2, aabb2);
+    aabb1.overlap(aabb2, overlap);
+    result.addCostSource(fcl::CostSource<S>(overlap, shape1.cost_density * shape2.cost_density),
+                         request.num_max_cost_sources);
+  };
+  if (!(shape1.isOccupied() && shape2.isOccupied())) {
+    if (!shape1.isFree() && !shape2.isFree() && request.enable_cost && intersect(nullptr)) {
+      add_cost_source();
+    }
+    return result.numContacts();
+  }
   DiskContact<S> contact;
   if (!intersect(&contact)) return result.numContacts();
   if (request.num_max_contacts > result.numContacts()) {
@@ -161,14 +176,7 @@ std::size_t answerCollision(const Shape1& shape1, const Transform3<S>& X_W1, con
       result.addContact(Contact(&shape1, &shape2, Contact::NONE, Contact::NONE));
     }
   }
-  if (request.enable_cost) {
-    fcl::AABB<S> aabb1, aabb2, overlap;
-    fcl::computeBV(shape1, X_W1, aabb1);
-    fcl::computeBV(shape2, X_W2, aabb2);
-    aabb1.overlap(aabb2, overlap);
-    result.addCostSource(fcl::CostSource<S>(overlap, shape1.cost_density * shape2.cost_density),
-                         request.num_max_cost_sources);
-  }
+  if (request.enable_cost) add_cost_source();
   return result.numContacts();
 }
 
