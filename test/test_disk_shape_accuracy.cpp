@@ -436,12 +436,14 @@ TEST(ReferenceSelfCheck, EllipsoidWithEqualRadiiIsASphere) {
 }
 
 TEST(ReferenceSelfCheck, HalfspaceAndPlane) {
+  // Long-double literals throughout: a double 0.8 is 0.8 only to 4e-17, above
+  // this check's tolerance.
   // Tilted by theta, the disk's lowest point is r sin(theta) below its centre.
   const Real theta = 0.3L;
   const ref::Disk disk = ref::makeDisk(2, rotX(theta), V3(5, 6, 1));
   ref::Halfspace hs;
   hs.n = V3(0, 0, 1);
-  hs.d = -0.5;
+  hs.d = -0.5L;
   expectReference(disk, hs, 1.5L - 2 * std::sin(theta), "halfspace below");
   hs.d = 1;
   expectReference(disk, hs, Real(0), "halfspace through the centre");
@@ -454,7 +456,7 @@ TEST(ReferenceSelfCheck, HalfspaceAndPlane) {
   // A posed halfspace: local n = x, rotated onto z, moved up by 1: {z <= 0.2}.
   ref::Halfspace moved;
   moved.n = V3(1, 0, 0);
-  moved.d = -0.8;
+  moved.d = -0.8L;
   M3 x_to_z;
   x_to_z << 0, 0, -1, 0, 1, 0, 1, 0, 0;
   expectReference(disk, posed(moved, x_to_z, V3(0, 0, 1)), 0.8L - 2 * std::sin(theta), "posed");
@@ -462,14 +464,14 @@ TEST(ReferenceSelfCheck, HalfspaceAndPlane) {
 
 TEST(ReferenceSelfCheck, CoaxialAndSideBySideCylinder) {
   ref::Cylinder cyl;
-  cyl.radius = 0.7;
-  cyl.lz = 1.2;
-  expectReference(kUnitDisk, posed(cyl, M3::Identity(), V3(0, 0, 2)), Real(1.4), "coaxial above");
-  expectReference(kUnitDisk, posed(cyl, M3::Identity(), V3(2.5, 0, 0.1)), Real(0.8), "side by side");
+  cyl.radius = 0.7L;
+  cyl.lz = 1.2L;
+  expectReference(kUnitDisk, posed(cyl, M3::Identity(), V3(0, 0, 2)), 1.4L, "coaxial above");
+  expectReference(kUnitDisk, posed(cyl, M3::Identity(), V3(2.5L, 0, 0.1L)), 0.8L, "side by side");
   // Axis along x, lying above the disk: the side is at height 2 - 0.7.
   M3 z_to_x;
   z_to_x << 0, 0, 1, 0, 1, 0, -1, 0, 0;
-  expectReference(kUnitDisk, posed(cyl, z_to_x, V3(0.2, 0.3, 2)), Real(1.3), "lying above");
+  expectReference(kUnitDisk, posed(cyl, z_to_x, V3(0.2L, 0.3L, 2)), 1.3L, "lying above");
 }
 
 TEST(ReferenceSelfCheck, ConeApexAndBaseOverTheDisk) {
