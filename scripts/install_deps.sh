@@ -4,6 +4,8 @@
 # Idempotent: does nothing when every package is already installed.
 #   ./scripts/install_deps.sh               # the base list
 #   ./scripts/install_deps.sh --sanitizers  # the base list and the fuzzing/sanitizer tools
+#   ./scripts/install_deps.sh --packaging   # the base list and pkg-config, colcon, Doxygen
+#                                           # (scripts/check_packaging.sh); options combine
 set -euo pipefail
 
 PACKAGES=(
@@ -24,11 +26,22 @@ SANITIZER_PACKAGES=(
   libclang-rt-14-dev
 )
 
-case "${1:-}" in
-  "") ;;
-  --sanitizers) PACKAGES+=("${SANITIZER_PACKAGES[@]}") ;;
-  *) echo "usage: $0 [--sanitizers]" >&2; exit 2 ;;
-esac
+# pkg-config, colcon and Doxygen (scripts/check_packaging.sh).
+PACKAGING_PACKAGES=(
+  doxygen
+  pkg-config
+  colcon
+  python3-colcon-cmake   # colcon builds CMake packages
+  python3-colcon-ros     # colcon reads package.xml (build_type cmake)
+)
+
+for option in "$@"; do
+  case "$option" in
+    --sanitizers) PACKAGES+=("${SANITIZER_PACKAGES[@]}") ;;
+    --packaging) PACKAGES+=("${PACKAGING_PACKAGES[@]}") ;;
+    *) echo "usage: $0 [--sanitizers] [--packaging]" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for package in "${PACKAGES[@]}"; do

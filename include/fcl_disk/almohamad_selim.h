@@ -39,9 +39,12 @@ template <typename S>
 DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                                  const fcl::Transform3<S>& X_W2);
 
+// Explicit instantiations, compiled into libfcl_disk (hidden from the API reference).
+/// @cond
 extern template DiskDistanceResult<float> almohamadSelimDiskDistance(
     float, const fcl::Transform3<float>&, float, const fcl::Transform3<float>&);
 extern template DiskDistanceResult<double> almohamadSelimDiskDistance(
     double, const fcl::Transform3<double>&, double, const fcl::Transform3<double>&);
+/// @endcond
 
 }  // namespace fcl_disk

@@ -43,6 +43,7 @@ void ensureDiskFunctionsRegistered();
 template <typename S>
 class Disk final : public fcl::Cylinder<S> {
  public:
+  /// A disk of radius `radius` in its frame D (see above); throws as stated above.
   explicit Disk(S radius) : fcl::Cylinder<S>(checkedRadius(radius), S(0)) {
     detail::ensureDiskFunctionsRegistered();
   }
@@ -64,7 +65,7 @@ class Disk final : public fcl::Cylinder<S> {
   }
 };
 
-using Diskd = Disk<double>;
-using Diskf = Disk<float>;
+using Diskd = Disk<double>;  ///< A Disk in double.
+using Diskf = Disk<float>;   ///< A Disk in float.
 
 }  // namespace fcl_disk

@@ -101,6 +101,7 @@ class DiskCollisionObject : public fcl::CollisionObject<S> {
   /// DiskCollisionObject. Not virtual: see the class comment.
   void computeAABB() { computeTightAABB(); }
 
+  /// The disk this object holds.
   const Disk<S>& disk() const { return *disk_; }
 
  private:
@@ -113,8 +114,8 @@ class DiskCollisionObject : public fcl::CollisionObject<S> {
   std::shared_ptr<Disk<S>> disk_;
 };
 
-using DiskCollisionObjectd = DiskCollisionObject<double>;
-using DiskCollisionObjectf = DiskCollisionObject<float>;
+using DiskCollisionObjectd = DiskCollisionObject<double>;  ///< A DiskCollisionObject in double.
+using DiskCollisionObjectf = DiskCollisionObject<float>;   ///< A DiskCollisionObject in float.
 
 // ---- implementation ------------------------------------------------------------
 

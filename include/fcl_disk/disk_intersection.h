@@ -40,9 +40,12 @@ template <typename S>
 bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2,
                     DiskContact<S>* contact = nullptr);
 
+// Explicit instantiations, compiled into libfcl_disk (hidden from the API reference).
+/// @cond
 extern template bool intersectDisks(float, const fcl::Transform3<float>&, float,
                                     const fcl::Transform3<float>&, DiskContact<float>*);
 extern template bool intersectDisks(double, const fcl::Transform3<double>&, double,
                                     const fcl::Transform3<double>&, DiskContact<double>*);
+/// @endcond
 
 }  // namespace fcl_disk

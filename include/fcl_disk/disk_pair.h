@@ -5,6 +5,12 @@
 
 #include <fcl/common/types.h>
 
+// The headers use C++17 (inline variables, if constexpr). Debian's fcl.pc puts
+// -std=c++11 in pkg-config's flags: add -std=c++17 after them.
+#if __cplusplus < 201703L
+#error "fcl_disk needs C++17 (-std=c++17; with pkg-config, after $(pkg-config --cflags fcl_disk))"
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -31,9 +37,10 @@ struct DiskDistanceResult {
   /// arithmetic, lower_bound <= true distance <= distance, so certifiedGap() is an
   /// error bar the caller can check; it is 0 up to rounding for the exact solver.
   S lower_bound{0};
-  DiskPairFeature feature{DiskPairFeature::intersecting};
+  DiskPairFeature feature{DiskPairFeature::intersecting};  ///< where p_W1 and p_W2 lie.
   int iterations{0};  ///< Newton iterations used (rim-rim case of the exact solver), else 0.
 
+  /// distance - lower_bound: how far the returned distance can exceed the true one.
   S certifiedGap() const { return distance - lower_bound; }
 };
 
@@ -59,6 +66,7 @@ constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) :
 /// counts as invalid input: NaN distance, no contact (docs/robustness.md).
 template <typename S>
 constexpr S kMaxDiskLength = std::is_same<S, float>::value ? S(1e37) : S(1e100);
+/// The smallest radius fcl_disk answers for (see kMaxDiskLength).
 template <typename S>
 constexpr S kMinDiskRadius = std::is_same<S, float>::value ? S(1e-37) : S(1e-100);
 

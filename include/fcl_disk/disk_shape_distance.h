@@ -30,13 +30,14 @@ struct DiskShapeDistanceResult {
   S lower_bound{0};
   int iterations{0};  ///< iterations of the generic solver (0 for closed forms).
 
+  /// distance - lower_bound: how far the returned distance can exceed the true one.
   S certifiedGap() const { return distance - lower_bound; }
 };
 
 /// Exact distance between the disk of radius `radius` with pose X_WD and `shape`
 /// with pose X_WS, for Shape one of fcl::Sphere, Box, Capsule, Cylinder, Cone,
 /// Ellipsoid, Convex, Halfspace, Plane, TriangleP (each pair lives in
-/// src/pairs/disk_<shape>.cpp).
+/// `src/pairs/disk_<shape>.cpp`).
 ///
 /// Frames: the disk is centred at the origin of its frame D, in D's XY plane,
 /// normal +Z; the shape is FCL's, in its frame S (fcl::Cylinder, Cone, Capsule
@@ -55,14 +56,11 @@ struct DiskShapeDistanceResult {
 /// points lie on their shapes to the same bound, and
 /// |p_W_shape - p_W_disk| == distance up to rounding. lower_bound is the
 /// certificate; certifiedGap() <= 1e-12 * scale on converged answers and an
-/// honest, larger error bar where the iteration stops at its cap.
-/// Known limit: a disk nearly parallel to a curved-rimmed flat face (a
-/// cylinder's cap, a cone's base) whose rim crosses that face's rim in
-/// projection, touching or nearly so, can end at the iteration cap with the
-/// certificate open (fuzzing found tilt 2e-3 rad, error 3e-5 of the scene):
-/// the answer is then an upper bound and lower_bound a lower bound, no more.
-/// The disk-disk solver's lens-corner candidates (docs/exact_distance.md,
-/// section 4) are the known remedy, not yet applied here.
+/// honest, larger error bar where the iteration stops at its cap. A disk
+/// nearly parallel to a cylinder's cap or a cone's base whose rim crosses the
+/// end's rim in projection (the optimum at a corner of the lens where they
+/// overlap) is answered by the disk-disk solver's lens corners against that end
+/// (docs section 3, "Flat ends").
 /// Float: inputs are promoted to double and results rounded to float.
 ///
 /// Overlap: distance 0, p_W_disk == p_W_shape == a point of both shapes

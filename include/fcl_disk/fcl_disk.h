@@ -10,3 +10,8 @@
 #include <fcl_disk/exact_distance.h>
 #include <fcl_disk/fcl_templates.h>
 #include <fcl_disk/registration.h>
+
+/// @namespace fcl_disk
+/// Zero-thickness circular disks for FCL 0.7: the shape (Disk), the disk-disk and
+/// disk-shape solvers (exactDiskDistance(), diskShapeDistance(), ...) and the hook
+/// that answers fcl::distance and fcl::collide with them (registerDiskFunctions()).

@@ -103,6 +103,8 @@ struct ConvexTarget {
     }
     Projection best = ontoFace(y, faces[farthest]);
     double best_distance = (y - best.q).norm();
+    // The farthest plane's distance bounds the polytope's: reached, it is optimal.
+    if (best_distance <= farthest_height) return best;
     for (std::size_t f = 0; f < faces.size(); ++f) {
       if (int(f) == farthest) continue;
       const double height = faces[f].unit_normal.dot(y) - faces[f].offset;
