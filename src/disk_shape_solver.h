@@ -617,7 +617,9 @@ constexpr double kNearlyParallelFaceCosine = 0.995;
 /// otherwise; quadratic convergence needs two or three.
 constexpr int kRimLineNewtonSteps = 4;
 
-/// Candidates from X's polygonal faces nearly parallel to the disk: the rim
+/// Candidates from X's polygonal faces: a common point where a face's trace on
+/// the disk's plane meets the disk; and,
+/// for faces nearly parallel to the disk, the rim
 /// points above each face edge (where psi along the rim has a kink: over the
 /// face it is the height, past the edge the distance to the edge), moved by
 /// Newton along the rim to the minimum of the squared distance to the edge's
@@ -630,6 +632,31 @@ void tryFaces(const Target& target, const DiskInShape& disk, double gap_toleranc
               ShapeIterate* at, double* lower) {
   const double r = disk.r;
   target.forEachFace([&](const Vec3& normal, int count, const auto& vertex) {
+    // Any face crossing the disk's plane: its trace there is the segment
+    // between two edges' crossings; its point nearest the disk's centre, when
+    // inside the disk, is a common point. A sliver face (a triangle of nearly
+    // zero area) meets the disk only in a thin strip, where psi's regions
+    // alternate and the iteration can stop short of it.
+    std::array<Vec2, 2> trace;
+    int crossings = 0;
+    for (int i = 0; i < count && crossings < 2; ++i) {
+      const Vec3 a = vertex(i), b = vertex((i + 1) % count);
+      const double height_a = disk.n.dot(a - disk.c), height_b = disk.n.dot(b - disk.c);
+      if (!((height_a < 0.0 && height_b >= 0.0) || (height_a >= 0.0 && height_b < 0.0))) continue;
+      trace[crossings] = disk.inPlane(a + (height_a / (height_a - height_b)) * (b - a) - disk.c);
+      if (trace[crossings].squaredNorm() <= r * r) {
+        offerCandidate(target, disk, trace[crossings], disk.n, gap_tolerance, scale, at, lower);
+      }
+      ++crossings;
+    }
+    if (crossings == 2) {
+      const Vec2 along = trace[1] - trace[0];
+      const double length_squared = along.squaredNorm();
+      const double t = length_squared > 0.0 ? std::clamp(-trace[0].dot(along) / length_squared, 0.0, 1.0)
+                                            : 0.0;
+      const Vec2 s = trace[0] + t * along;
+      if (s.squaredNorm() <= r * r) offerCandidate(target, disk, s, disk.n, gap_tolerance, scale, at, lower);
+    }
     if (!(std::abs(disk.n.dot(normal)) >= kNearlyParallelFaceCosine)) return;
     // The disk's point lowest towards the face (its rim point down the tilt):
     // optimal, certified along the face normal, when its foot is on the face.

@@ -8,17 +8,24 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
+/// A triangle whose angle at a is below this sine is a sliver: its plane, and
+/// so its face projection, is known only to about eps / sine (the cross product
+/// of nearly parallel edges), 1e-13 at this sine; its edges stay exact.
+constexpr double kSliverSine = 1e-3;
+
 /// The closed flat triangle a, b, c, in its frame (a zero-area triangle is the
 /// union of its edges).
 struct TriangleTarget {
   std::array<Vec3, 3> vertices;
   Vec3 normal;  ///< (b - a) x (c - a), not normalised; zero when degenerate.
+  bool sliver;  ///< |normal| < kSliverSine |b - a| |c - a|: the face projection
+                ///< is checked against the edges'.
 
   /// Ericson's region test (Real-Time Collision Detection, 5.1.5): the Voronoi
   /// region of x among the vertices, edges and face decides the nearest point
   /// from six dot products. A degenerate triangle, whose face region has no
   /// area, goes to the general polygon projection (its nearest edge).
-  Projection project(const Vec3& x) const {
+  Projection projectByRegion(const Vec3& x) const {
     const Vec3& a = vertices[0];
     const Vec3& b = vertices[1];
     const Vec3& c = vertices[2];
@@ -51,6 +58,32 @@ struct TriangleTarget {
     const double v = vb / area, w = vc / area;
     return Projection{a + v * ab + w * ac,
                       FactoredHessian::diagonalOf(Vec3::Zero()).add(1.0 / area, normal)};
+  }
+
+  Projection project(const Vec3& x) const {
+    const Projection by_region = projectByRegion(x);
+    if (!sliver) return by_region;
+    // A sliver: the region test and the face point carry the plane's error; an
+    // edge point that is nearer is the better answer (exact where x lies on an
+    // edge).
+    Projection best = by_region;
+    double best_squared = (x - by_region.q).squaredNorm();
+    for (int i = 0; i < 3; ++i) {
+      const Projection on_edge = ontoSegment(x, vertices[i], vertices[(i + 1) % 3]);
+      const double squared = (x - on_edge.q).squaredNorm();
+      if (squared < best_squared) best = on_edge, best_squared = squared;
+    }
+    return best;
+  }
+
+  /// The nearest point of the segment from `from` to `to`.
+  static Projection ontoSegment(const Vec3& x, const Vec3& from, const Vec3& to) {
+    const Vec3 edge = to - from;
+    const double length_squared = edge.squaredNorm();
+    const double t = length_squared > 0.0 ? edge.dot(x - from) / length_squared : 0.0;
+    if (!(t > 0.0)) return Projection{from, FactoredHessian::identity()};
+    if (!(t < 1.0)) return Projection{to, FactoredHessian::identity()};
+    return onEdge(from, edge, t);
   }
 
   /// The point from + t edge of an edge, 0 < t < 1: psi's Hessian I - e e^T.
@@ -94,9 +127,12 @@ struct TriangleTraits {
   static TriangleTarget target(const fcl::TriangleP<S>& triangle) {
     TriangleTarget target{{triangle.a.template cast<double>(), triangle.b.template cast<double>(),
                            triangle.c.template cast<double>()},
-                          Vec3::Zero()};
-    target.normal =
-        (target.vertices[1] - target.vertices[0]).cross(target.vertices[2] - target.vertices[0]);
+                          Vec3::Zero(), false};
+    const Vec3 ab = target.vertices[1] - target.vertices[0];
+    const Vec3 ac = target.vertices[2] - target.vertices[0];
+    target.normal = ab.cross(ac);
+    target.sliver = target.normal.squaredNorm() <
+                    kSliverSine * kSliverSine * ab.squaredNorm() * ac.squaredNorm();
     return target;
   }
   /// The triangle's normal.
