@@ -20,6 +20,7 @@
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -133,8 +134,9 @@ Fingerprint fingerprintOf(std::size_t returned, const fcl::CollisionResult<S>& r
 // The scene: shapes and poses in double, built once per scalar type.
 
 struct ShapeSpec {
-  enum class Type { disk, cylinder, sphere, box } type;
-  double a = 0, b = 0, c = 0;  // disk/sphere: radius; cylinder: radius, length; box: sides
+  enum class Type { disk, cylinder, sphere, box, convex } type;
+  double a = 0, b = 0, c = 0;  // disk/sphere: radius; cylinder: radius, length; box, convex
+                               // (a box as a Convex, each query's own object): sides
 };
 
 struct PairSpec {
@@ -204,6 +206,7 @@ ShapeSpec randomOtherShape(Random& random, ShapeSpec::Type type) {
       return {type, random.uniform(0.2, 0.6), random.uniform(0.2, 1.0)};
     case ShapeSpec::Type::sphere: return {type, random.uniform(0.2, 0.6)};
     case ShapeSpec::Type::box:
+    case ShapeSpec::Type::convex:
       return {type, random.uniform(0.2, 0.8), random.uniform(0.2, 0.8), random.uniform(0.2, 0.8)};
   }
   return {};
@@ -221,6 +224,9 @@ std::vector<PairSpec> otherPairs(Random& random, bool with_disks) {
       with_disks ? std::vector<Kind>{{"cylinder-cylinder", T::cylinder, T::cylinder},
                                      {"disk-sphere", T::disk, T::sphere},
                                      {"box-disk", T::box, T::disk},
+                                     // fcl_disk keeps each thread's last hull: many
+                                     // hulls queried in any order on any thread
+                                     {"disk-convex", T::disk, T::convex},
                                      {"disk-cylinder", T::disk, T::cylinder}}
                  : std::vector<Kind>{{"cylinder-cylinder", T::cylinder, T::cylinder},
                                      {"sphere-cylinder", T::sphere, T::cylinder},
@@ -256,6 +262,15 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeGeometry(const ShapeSpec& shape) 
     case ShapeSpec::Type::sphere: return std::make_shared<fcl::Sphere<S>>(S(shape.a));
     case ShapeSpec::Type::box:
       return std::make_shared<fcl::Box<S>>(S(shape.a), S(shape.b), S(shape.c));
+    case ShapeSpec::Type::convex: {
+      const S x = S(shape.a / 2), y = S(shape.b / 2), z = S(shape.c / 2);
+      auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>(std::vector<fcl::Vector3<S>>{
+          {-x, -y, -z}, {x, -y, -z}, {x, y, -z}, {-x, y, -z},
+          {-x, -y, z},  {x, -y, z},  {x, y, z},  {-x, y, z}});
+      auto faces = std::make_shared<std::vector<int>>(std::vector<int>{
+          4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
+      return std::make_shared<fcl::Convex<S>>(vertices, 6, faces);
+    }
   }
   return nullptr;
 }

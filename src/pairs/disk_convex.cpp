@@ -17,33 +17,89 @@ namespace {
 constexpr double kParallelFaceSine = 1e-12;
 
 /// A face of the polytope: where its vertex indices start in FCL's face list,
-/// how many, its outward unit normal (zero for a face of zero area) and the
-/// plane's offset (normal . vertex).
+/// how many, its outward unit normal (zero for a face of zero area), the
+/// plane's offset (normal . vertex), and a ball holding the polygon (centre the
+/// vertices' mean), whose distance bounds the polygon's from below.
 struct ConvexFace {
-  const int* index;
+  std::size_t start;  ///< the face's first vertex index in FCL's face list
   int count;
   Vec3 unit_normal;
   double offset;
+  Vec3 centre;
+  double radius;
 };
 
-/// FCL's Convex: vertices, and faces encoded [k, i_1..i_k, k', ...], each listed
-/// counter-clockwise seen from outside. Projection works in the shape frame. The
-/// face planes are computed once per query (Newell's formula), not per
-/// projection.
-template <typename S>
-struct ConvexTarget {
-  const fcl::Convex<S>* convex;
+/// What a query needs of a Convex beyond FCL's lists, computed from them: the
+/// face planes and balls (Newell's normals), whether the polytope is flat, its
+/// largest face, and its bounding radius.
+struct ConvexGeometry {
   std::vector<ConvexFace> faces;
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
+};
 
-  explicit ConvexTarget(const fcl::Convex<S>& shape) : convex(&shape) {
-    const std::vector<int>& list = convex->getFaces();
-    faces.reserve(convex->getFaceCount());
+/// The geometry of the Convex queried last on this thread, with a copy of the
+/// lists it was computed from: a planner queries the same hull many times in a
+/// row, and computing the planes costs more than the query's projections
+/// (76 faces: ~14k instructions). A hit needs the lists equal value for value,
+/// so a hull destroyed and another built at the same address is recomputed.
+template <typename S>
+struct ConvexGeometryCache {
+  std::vector<fcl::Vector3<S>> vertices;
+  std::vector<int> face_list;
+  int face_count = -1;
+  ConvexGeometry geometry;
+};
+
+/// FCL's Convex: vertices, and faces encoded [k, i_1..i_k, k', ...], each listed
+/// counter-clockwise seen from outside. Projection works in the shape frame,
+/// with the face planes of ConvexGeometry (computed once per hull and thread,
+/// not per projection). One query at a time per thread holds the geometry.
+template <typename S>
+struct ConvexTarget {
+  const fcl::Convex<S>* convex;
+  const int* list;                   ///< FCL's face list
+  const std::vector<ConvexFace>& faces;
+  int largest_face;
+  bool flat;
+
+  explicit ConvexTarget(const fcl::Convex<S>& shape, const ConvexGeometry& geometry)
+      : convex(&shape),
+        list(shape.getFaces().data()),
+        faces(geometry.faces),
+        largest_face(geometry.largest_face),
+        flat(geometry.flat) {}
+
+  /// This thread's geometry of `shape`, from the cache when its lists are
+  /// unchanged.
+  static const ConvexGeometry& geometryOf(const fcl::Convex<S>& shape) {
+    thread_local ConvexGeometryCache<S> cache;
+    const auto& vertices = shape.getVertices();
+    const auto& face_list = shape.getFaces();
+    if (cache.face_count == shape.getFaceCount() && cache.vertices == vertices &&
+        cache.face_list == face_list) {
+      return cache.geometry;
+    }
+    cache.face_count = -1;  // invalid while rebuilt
+    cache.vertices = vertices;
+    cache.face_list = face_list;
+    cache.geometry = computeGeometry(shape);
+    cache.face_count = shape.getFaceCount();
+    return cache.geometry;
+  }
+
+  static ConvexGeometry computeGeometry(const fcl::Convex<S>& shape) {
+    ConvexGeometry geometry;
+    const auto vertex = [&](int index) { return shape.getVertices()[index].template cast<double>(); };
+    const std::vector<int>& list = shape.getFaces();
+    std::vector<ConvexFace>& faces = geometry.faces;
+    int& largest_face = geometry.largest_face;
+    bool& flat = geometry.flat;
+    faces.reserve(shape.getFaceCount());
     std::size_t at = 0;
     double largest_area = -1.0;
     Vec3 first_normal = Vec3::Zero();
-    for (int f = 0; f < convex->getFaceCount(); ++f) {
+    for (int f = 0; f < shape.getFaceCount(); ++f) {
       const int count = list[at];
       const int* index = &list[at + 1];
       // Newell's normal; for a triangle it is the one cross product (b - a) x (c - a).
@@ -62,15 +118,24 @@ struct ConvexTarget {
         flat &= first_normal.cross(normal).norm() <= kParallelFaceSine * first_normal.norm() * area;
       }
       const Vec3 unit = area > 0.0 ? Vec3(normal / area) : Vec3::Zero();
-      faces.push_back(ConvexFace{index, count, unit, unit.dot(vertex(index[0]))});
+      Vec3 centre = Vec3::Zero();
+      for (int i = 0; i < count; ++i) centre += vertex(index[i]);
+      centre /= count;
+      double radius_squared = 0.0;
+      for (int i = 0; i < count; ++i) {
+        radius_squared = std::max(radius_squared, (vertex(index[i]) - centre).squaredNorm());
+      }
+      faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre,
+                                 std::sqrt(radius_squared)});
       at += count + 1;
     }
+    return geometry;
   }
 
   Vec3 vertex(int index) const { return convex->getVertices()[index].template cast<double>(); }
 
   Projection ontoFace(const Vec3& y, const ConvexFace& face) const {
-    return projectOntoPolygon(y, face.count, [&](int i) { return vertex(face.index[i]); },
+    return projectOntoPolygon(y, face.count, [&](int i) { return vertex(list[face.start + i]); },
                               face.unit_normal);
   }
 
@@ -109,6 +174,8 @@ struct ConvexTarget {
       if (int(f) == farthest) continue;
       const double height = faces[f].unit_normal.dot(y) - faces[f].offset;
       if (!(height > 0.0) || !(height < best_distance)) continue;
+      const double reach = best_distance + faces[f].radius;
+      if (!((y - faces[f].centre).squaredNorm() < reach * reach)) continue;
       const Projection on_face = ontoFace(y, faces[f]);
       const double distance = (y - on_face.q).norm();
       if (distance < best_distance) best = on_face, best_distance = distance;
@@ -133,7 +200,7 @@ struct ConvexTarget {
   void forEachFace(Visit&& visit) const {
     for (const ConvexFace& face : faces) {
       if (!(face.unit_normal.squaredNorm() > 0.0)) continue;
-      visit(face.unit_normal, face.count, [&](int i) { return vertex(face.index[i]); });
+      visit(face.unit_normal, face.count, [&](int i) { return vertex(list[face.start + i]); });
     }
   }
 };
@@ -169,7 +236,9 @@ struct ConvexTraits {
     return std::sqrt(largest);
   }
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
-  static ConvexTarget<S> target(const fcl::Convex<S>& convex) { return ConvexTarget<S>(convex); }
+  static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
+    return ConvexTarget<S>(convex, ConvexTarget<S>::geometryOf(convex));
+  }
   /// The face normals.
   static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target) {
     std::vector<Vec3> normals;
