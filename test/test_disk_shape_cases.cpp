@@ -464,4 +464,21 @@ TEST(DiskShapeCases, SliverTriangles) {
   EXPECT_GE(referenced, 50);
 }
 
+TEST(DiskShapeCases, HalfspaceNormalOfAnyMagnitude) {
+  // FCL's constructor normalises n; a caller may still set n and d directly.
+  // Any non-zero n describes the same halfspace {x : n.x <= d}: a tiny
+  // (subnormal) one too, with a unit contact normal.
+  fcl::Halfspace<double> ground(Vector3d::UnitZ(), 0.0);
+  ground.n = Vector3d(0, 0, 4e-320);
+  const Transform3d sunk = at({0, 0, 0.1}, Vector3d(1, 0, 1));
+  fcl_disk::DiskContact<double> contact;
+  ASSERT_TRUE(fcl_disk::diskShapeIntersect(0.5, sunk, ground, kIdentity, &contact));
+  EXPECT_NEAR(contact.normal.norm(), 1.0, kExact);
+  EXPECT_NEAR(contact.penetration_depth, 0.5 * std::sqrt(0.5) - 0.1, kExact);
+  const Transform3d above = at({0, 0, 1.0});
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(0.5, above, ground, kIdentity).distance, 1.0, kExact);
+  ground.n = Vector3d::Zero();  // no halfspace
+  EXPECT_TRUE(std::isnan(fcl_disk::diskShapeDistance(0.5, above, ground, kIdentity).distance));
+}
+
 }  // namespace

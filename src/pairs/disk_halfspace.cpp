@@ -24,17 +24,23 @@ struct BoundaryOfDisk {
   }
 };
 
-/// n, d of the shape; valid if finite, n non-zero.
+/// n, d of the shape; valid if finite, n non-zero (any magnitude: FCL's own
+/// constructor normalises it, and so does boundaryOfDisk).
 template <typename S>
 bool isValidBoundary(const fcl::Vector3<S>& n, S d) {
-  return n.allFinite() && n.squaredNorm() > S(0) && std::abs(d) <= kMaxDiskLength<S>;
+  return n.allFinite() && (n.array() != S(0)).any() && std::abs(d) <= kMaxDiskLength<S>;
 }
 
 template <typename S>
 BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d, const DiskInShape& disk) {
+  // Scaled by its largest component first: a normal of tiny (even subnormal)
+  // components still normalises to a unit vector.
   const Vec3 n_raw = n_S.template cast<double>();
-  const double length = n_raw.norm();
-  const Vec3 n = n_raw / length;
+  const double largest = n_raw.cwiseAbs().maxCoeff();
+  const Vec3 n_scaled = n_raw / largest;
+  const double scaled_length = n_scaled.norm();
+  const Vec3 n = n_scaled / scaled_length;
+  const double length = largest * scaled_length;
   const Vec2 planar = disk.inPlane(n);
   return BoundaryOfDisk{n, n.dot(disk.c) - double(d) / length,
                         planar.x() * disk.u + planar.y() * disk.v, planar.norm()};
