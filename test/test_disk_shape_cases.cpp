@@ -115,6 +115,15 @@ TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
   // An ellipsoid with a zero semi-axis is an ellipse: (0.5, 0.5, 0) lying flat at 0.8.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 0), above)
                   .distance, 0.8, kExact);
+  // A semi-axis of 1e-30 is an ellipse to rounding (its secular equation is
+  // stiff: Newton's steps are minute, so it bisects): as the flat one, 0.8.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 1e-30), above)
+                  .distance, 0.8, kExact);
+  // Turned so that it lies in the plane x = 2 (its 3e-4 axis along z): its
+  // point nearest the rim point (1, 0, 0) is (2, 0, 0.1 - 3e-4).
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(3e-4, 0.2, 1e-30),
+                                          at({2, 0, 0.1}, Vector3d::UnitX()))
+                  .distance, std::hypot(1.0, 0.1 - 3e-4), kExact);
   // An ellipsoid with two zero semi-axes is the segment z in [-0.45, 0.45] of its
   // frame. Lying along x at height 0.8 over the face: 0.8. Standing upright at
   // (3, 0, 0.2), crossing the disk's plane beside the rim: 3 - 1 = 2.

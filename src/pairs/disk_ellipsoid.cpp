@@ -7,8 +7,8 @@ namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The projection's root t is found to this relative accuracy, within this many
-/// safeguarded Newton steps (bisection only where Newton would leave the bracket).
+/// The projection's root t is found to this relative accuracy (of phi, and of
+/// the bracket), within this many safeguarded Newton steps.
 constexpr double kSecularRootTolerance = 4 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxSecularSteps = 100;
 
@@ -60,17 +60,30 @@ struct EllipsoidTarget {
     }
     double lo = std::max(0.0, e_min * y_on_axes.norm() - e_max * e_max);
     double hi = std::max(ey.norm(), lo);
+    // Safeguarded as rtsafe (Numerical Recipes 9.4): bisection when Newton
+    // would leave the bracket or does not halve its step, as where a tiny
+    // semi-axis makes F stiff and Newton's steps minute; done when q is on the
+    // surface to rounding (|phi| = |F^-1/2 - 1| <= tolerance) or the bracket
+    // has closed. A small step alone proves nothing there.
     double t = lo;
-    for (int step = 0; step < kMaxSecularSteps; ++step) {
+    double step = hi - lo, step_before = step;
+    for (int iteration = 0; iteration < kMaxSecularSteps; ++iteration) {
       double derivative;
       const double value = phi(t, &derivative);
       if (value < 0.0) lo = t; else hi = t;
-      if (value == 0.0) break;
-      double next = derivative > 0.0 ? t - value / derivative : 0.5 * (lo + hi);
-      if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-      const bool settled = std::abs(next - t) <= kSecularRootTolerance * std::max(t, e_max * e_max);
+      if (!(std::abs(value) > kSecularRootTolerance)) break;
+      if (hi - lo <= kSecularRootTolerance * std::max(t, e_max * e_max)) break;
+      const double newton = derivative > 0.0 ? value / derivative
+                                             : std::numeric_limits<double>::infinity();
+      step_before = step;
+      double next = t - newton;
+      if (next > lo && next < hi && std::abs(2.0 * newton) <= std::abs(step_before)) {
+        step = newton;
+      } else {
+        next = 0.5 * (lo + hi);
+        step = hi - lo;
+      }
       t = next;
-      if (settled) break;
     }
     Vec3 q_S, a, v;  // a = A q (A = diag(1 / e_i^2)), v = M a, M = diag(e_i^2 / (t + e_i^2))
     Vec3 m_diagonal;
