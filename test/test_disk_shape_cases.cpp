@@ -490,4 +490,25 @@ TEST(DiskShapeCases, HalfspaceNormalOfAnyMagnitude) {
   EXPECT_TRUE(std::isnan(fcl_disk::diskShapeDistance(0.5, above, ground, kIdentity).distance));
 }
 
+TEST(DiskShapeCases, PolytopesAtTheEndsOfTheLengthRange) {
+  // Lengths 1e-99..1e99 (kMaxDiskLength is 1e100): a triangle's region test
+  // multiplies pairs of dot products (fourth powers of lengths) and runs on
+  // scaled vectors; the distances are 2k (triangle) and k (box, Convex box).
+  for (const double k : {1e-99, 1e-80, 1e-20, 1.0, 1e20, 1e80, 1e99}) {
+    Transform3d X = kIdentity;
+    X.translation() = k * Vector3d(0.3, 0.2, 2);
+    const fcl::TriangleP<double> triangle(k * Vector3d(-1, -1, 0), k * Vector3d(1, -1, 0),
+                                          k * Vector3d(0, 1, 0));
+    EXPECT_NEAR(fcl_disk::diskShapeDistance(k, kIdentity, triangle, X).distance / k, 2.0, kExact) << k;
+    auto vertices = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
+        {-k, -k, -k}, {k, -k, -k}, {k, k, -k}, {-k, k, -k}, {-k, -k, k}, {k, -k, k}, {k, k, k}, {-k, k, k}});
+    auto faces = std::make_shared<std::vector<int>>(std::vector<int>{
+        4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
+    const fcl::Convex<double> cube(vertices, 6, faces);
+    EXPECT_NEAR(fcl_disk::diskShapeDistance(k, kIdentity, cube, X).distance / k, 1.0, kExact) << k;
+    EXPECT_NEAR(fcl_disk::diskShapeDistance(k, kIdentity, fcl::Box<double>(2 * k, 2 * k, 2 * k), X).distance / k,
+                1.0, kExact) << k;
+  }
+}
+
 }  // namespace

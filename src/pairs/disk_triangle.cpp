@@ -17,47 +17,55 @@ constexpr double kSliverSine = 1e-3;
 /// union of its edges).
 struct TriangleTarget {
   std::array<Vec3, 3> vertices;
-  Vec3 normal;  ///< (b - a) x (c - a), not normalised; zero when degenerate.
+  Vec3 normal;       ///< (b - a) x (c - a), not normalised; zero when degenerate.
+  Vec3 unit_normal;  ///< normal / |normal| (stableNorm: no overflow); zero when degenerate.
   bool sliver;  ///< |normal| < kSliverSine |b - a| |c - a|: the face projection
                 ///< is checked against the edges'.
 
   /// Ericson's region test (Real-Time Collision Detection, 5.1.5): the Voronoi
   /// region of x among the vertices, edges and face decides the nearest point
   /// from six dot products. A degenerate triangle, whose face region has no
-  /// area, goes to the general polygon projection (its nearest edge).
+  /// area, goes to the general polygon projection (its nearest edge). The
+  /// tests multiply pairs of dot products (fourth powers of lengths): they run
+  /// on the vectors scaled by their largest entry (the tests and the ratios are
+  /// homogeneous), so lengths up to kMaxDiskLength do not overflow.
   Projection projectByRegion(const Vec3& x) const {
     const Vec3& a = vertices[0];
     const Vec3& b = vertices[1];
     const Vec3& c = vertices[2];
-    const Vec3 ab = b - a, ac = c - a, ap = x - a;
+    const Vec3 ab_raw = b - a, ac_raw = c - a, ap_raw = x - a;
+    const double largest = std::max({ab_raw.cwiseAbs().maxCoeff(), ac_raw.cwiseAbs().maxCoeff(),
+                                     ap_raw.cwiseAbs().maxCoeff()});
+    const double inverse = largest > 0.0 ? 1.0 / largest : 1.0;
+    const Vec3 ab = inverse * ab_raw, ac = inverse * ac_raw, ap = inverse * ap_raw;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
     if (d1 <= 0.0 && d2 <= 0.0) return Projection{a, FactoredHessian::identity()};
-    const Vec3 bp = x - b;
+    const Vec3 bp = inverse * (x - b);
     const double d3 = ab.dot(bp), d4 = ac.dot(bp);
     if (d3 >= 0.0 && d4 <= d3) return Projection{b, FactoredHessian::identity()};
     const double vc = d1 * d4 - d3 * d2;
     if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0) {
-      return onEdge(a, ab, d1 / (d1 - d3));
+      return onEdge(a, ab_raw, d1 / (d1 - d3));
     }
-    const Vec3 cp = x - c;
+    const Vec3 cp = inverse * (x - c);
     const double d5 = ab.dot(cp), d6 = ac.dot(cp);
     if (d6 >= 0.0 && d5 <= d6) return Projection{c, FactoredHessian::identity()};
     const double vb = d5 * d2 - d1 * d6;
     if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0) {
-      return onEdge(a, ac, d2 / (d2 - d6));
+      return onEdge(a, ac_raw, d2 / (d2 - d6));
     }
     const double va = d3 * d6 - d5 * d4;
     const double towards_c = d4 - d3, towards_b = d5 - d6;
     if (va <= 0.0 && towards_c >= 0.0 && towards_b >= 0.0 && towards_c + towards_b > 0.0) {
       return onEdge(b, c - b, towards_c / (towards_c + towards_b));
     }
-    const double area = va + vb + vc;  // |normal|^2
+    const double area = va + vb + vc;  // |normal|^2, scaled
     if (!(area > 0.0)) {
-      return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, normal);
+      return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, unit_normal);
     }
     const double v = vb / area, w = vc / area;
-    return Projection{a + v * ab + w * ac,
-                      FactoredHessian::diagonalOf(Vec3::Zero()).add(1.0 / area, normal)};
+    return Projection{a + v * ab_raw + w * ac_raw,
+                      FactoredHessian::diagonalOf(Vec3::Zero()).add(1.0, unit_normal)};
   }
 
   Projection project(const Vec3& x) const {
@@ -103,9 +111,8 @@ struct TriangleTarget {
   /// The face, for the nearly-parallel candidates (none when degenerate).
   template <typename Visit>
   void forEachFace(Visit&& visit) const {
-    const double area = normal.norm();
-    if (!(area > 0.0)) return;
-    visit(Vec3(normal / area), 3, [this](int i) { return vertices[i]; });
+    if (!(unit_normal.squaredNorm() > 0.0)) return;
+    visit(unit_normal, 3, [this](int i) { return vertices[i]; });
   }
 };
 
@@ -127,17 +134,19 @@ struct TriangleTraits {
   static TriangleTarget target(const fcl::TriangleP<S>& triangle) {
     TriangleTarget target{{triangle.a.template cast<double>(), triangle.b.template cast<double>(),
                            triangle.c.template cast<double>()},
-                          Vec3::Zero(), false};
+                          Vec3::Zero(), Vec3::Zero(), false};
     const Vec3 ab = target.vertices[1] - target.vertices[0];
     const Vec3 ac = target.vertices[2] - target.vertices[0];
     target.normal = ab.cross(ac);
-    target.sliver = target.normal.squaredNorm() <
-                    kSliverSine * kSliverSine * ab.squaredNorm() * ac.squaredNorm();
+    const double area = target.normal.stableNorm();
+    if (area > 0.0) target.unit_normal = target.normal / area;
+    // |ab x ac| < kSliverSine |ab| |ac|, in norms (their squares' products overflow).
+    target.sliver = area < kSliverSine * ab.stableNorm() * ac.stableNorm();
     return target;
   }
   /// The triangle's normal.
   static std::array<Vec3, 1> contactDirections(const TriangleTarget& triangle) {
-    return {triangle.normal};
+    return {triangle.unit_normal};
   }
 };
 
