@@ -111,13 +111,15 @@ struct ConvexTarget {
         normal = vertex(index[count - 1]).cross(vertex(index[0]));
         for (int i = 0; i + 1 < count; ++i) normal += vertex(index[i]).cross(vertex(index[i + 1]));
       }
-      const double area = normal.norm();
+      // stableNorm and unit normals: |normal| is a squared length and the
+      // cross product of two normals a fourth power, beyond double at 1e100.
+      const double area = normal.stableNorm();
       if (area > largest_area) largest_area = area, largest_face = f;
-      if (area > 0.0) {
-        if (first_normal.squaredNorm() == 0.0) first_normal = normal;
-        flat &= first_normal.cross(normal).norm() <= kParallelFaceSine * first_normal.norm() * area;
-      }
       const Vec3 unit = area > 0.0 ? Vec3(normal / area) : Vec3::Zero();
+      if (area > 0.0) {
+        if (first_normal.squaredNorm() == 0.0) first_normal = unit;
+        flat &= first_normal.cross(unit).norm() <= kParallelFaceSine;
+      }
       Vec3 centre = Vec3::Zero();
       for (int i = 0; i < count; ++i) centre += vertex(index[i]);
       centre /= count;
