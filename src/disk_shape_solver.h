@@ -527,11 +527,6 @@ bool faceCase(const Target& target, const DiskInShape& disk, double rho, double 
   return false;
 }
 
-/// Minimises psi(s) = dist(x(s), X)^2 / 2 over the disk |s| <= r by the feasible
-/// Newton iteration of docs/disk_shape_distance.md section 3 and certifies the
-/// answer; the result is for X inflated by rho (>= 0). `scale` sets every
-/// tolerance. Every iterate is a feasible pair, so `distance` is always an upper
-/// bound and `lower_bound` a lower bound of the true distance.
 /// A flat circular end of X: the disk of `radius` about (0, 0, z) in the plane
 /// z = const of X's frame, part of X's boundary.
 struct FlatEnd {
@@ -618,9 +613,8 @@ constexpr double kNearlyParallelFaceCosine = 0.995;
 constexpr int kRimLineNewtonSteps = 4;
 
 /// Candidates from X's polygonal faces: a common point where a face's trace on
-/// the disk's plane meets the disk; and,
-/// for faces nearly parallel to the disk, the rim
-/// points above each face edge (where psi along the rim has a kink: over the
+/// the disk's plane meets the disk; and, for faces nearly parallel to the disk,
+/// the rim points above each face edge (where psi along the rim has a kink: over the
 /// face it is the height, past the edge the distance to the edge), moved by
 /// Newton along the rim to the minimum of the squared distance to the edge's
 /// line (smooth across the kink), certified along t_rim x edge; the feet of
@@ -652,10 +646,12 @@ void tryFaces(const Target& target, const DiskInShape& disk, double gap_toleranc
     if (crossings == 2) {
       const Vec2 along = trace[1] - trace[0];
       const double length_squared = along.squaredNorm();
-      const double t = length_squared > 0.0 ? std::clamp(-trace[0].dot(along) / length_squared, 0.0, 1.0)
-                                            : 0.0;
+      const double t =
+          length_squared > 0.0 ? std::clamp(-trace[0].dot(along) / length_squared, 0.0, 1.0) : 0.0;
       const Vec2 s = trace[0] + t * along;
-      if (s.squaredNorm() <= r * r) offerCandidate(target, disk, s, disk.n, gap_tolerance, scale, at, lower);
+      if (s.squaredNorm() <= r * r) {
+        offerCandidate(target, disk, s, disk.n, gap_tolerance, scale, at, lower);
+      }
     }
     if (!(std::abs(disk.n.dot(normal)) >= kNearlyParallelFaceCosine)) return;
     // The disk's point lowest towards the face (its rim point down the tilt):
@@ -713,6 +709,11 @@ void tryFaces(const Target& target, const DiskInShape& disk, double gap_toleranc
   });
 }
 
+/// Minimises psi(s) = dist(x(s), X)^2 / 2 over the disk |s| <= r by the feasible
+/// Newton iteration of docs/disk_shape_distance.md section 3 and certifies the
+/// answer; the result is for X inflated by rho (>= 0). `scale` sets every
+/// tolerance. Every iterate is a feasible pair, so `distance` is always an upper
+/// bound and `lower_bound` a lower bound of the true distance.
 template <typename Target>
 DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, double rho,
                                  double scale, SolverGoal goal) {
