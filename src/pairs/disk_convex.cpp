@@ -30,8 +30,8 @@ struct ConvexFace {
 };
 
 /// What a query needs of a Convex beyond FCL's lists, computed from them: the
-/// face planes and balls (Newell's normals), whether the polytope is flat, its
-/// largest face, and its bounding radius.
+/// face planes and balls (Newell's normals), whether the polytope is flat, and
+/// its largest face.
 struct ConvexGeometry {
   std::vector<ConvexFace> faces;
   int largest_face = -1;  ///< the face of largest area
