@@ -119,6 +119,9 @@ TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
   // stiff: Newton's steps are minute, so it bisects): as the flat one, 0.8.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 1e-30), above)
                   .distance, 0.8, kExact);
+  // A subnormal semi-axis (its square is 0) is flat: 0.8, not NaN.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(0.5, 0.5, 7.6e-322), above)
+                  .distance, 0.8, kExact);
   // Turned so that it lies in the plane x = 2 (its 3e-4 axis along z): its
   // point nearest the rim point (1, 0, 0) is (2, 0, 0.1 - 3e-4).
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Ellipsoid<double>(3e-4, 0.2, 1e-30),

@@ -11,6 +11,10 @@ namespace {
 /// the bracket), within this many safeguarded Newton steps.
 constexpr double kSecularRootTolerance = 4 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxSecularSteps = 100;
+/// Semi-axes below this are flat (0): their squares, which the secular
+/// equation divides by, would be subnormal or 0, and such an extent is below
+/// the rounding of any scene the solver resolves (lengths >= kMinDiskRadius).
+constexpr double kFlatSemiAxis = 1e-150;
 
 /// The solid ellipsoid {sum (y_i / e_i)^2 <= 1}, in its frame. Semi-axes may be
 /// 0 (a flat ellipse, a segment, a point).
@@ -123,7 +127,11 @@ struct EllipsoidTraits {
   }
   static double inflation(const fcl::Ellipsoid<S>&) { return 0.0; }
   static EllipsoidTarget target(const fcl::Ellipsoid<S>& ellipsoid) {
-    return EllipsoidTarget{ellipsoid.radii.template cast<double>()};
+    Vec3 e = ellipsoid.radii.template cast<double>();
+    for (int i = 0; i < 3; ++i) {
+      if (e[i] < kFlatSemiAxis) e[i] = 0.0;
+    }
+    return EllipsoidTarget{e};
   }
   /// The principal axes.
   static std::array<Vec3, 3> contactDirections(const EllipsoidTarget&) {
