@@ -71,27 +71,12 @@ struct TriangleTarget {
   Projection project(const Vec3& x) const {
     const Projection by_region = projectByRegion(x);
     if (!sliver) return by_region;
-    // A sliver: the region test and the face point carry the plane's error; an
-    // edge point that is nearer is the better answer (exact where x lies on an
-    // edge).
-    Projection best = by_region;
-    double best_squared = (x - by_region.q).squaredNorm();
-    for (int i = 0; i < 3; ++i) {
-      const Projection on_edge = ontoSegment(x, vertices[i], vertices[(i + 1) % 3]);
-      const double squared = (x - on_edge.q).squaredNorm();
-      if (squared < best_squared) best = on_edge, best_squared = squared;
-    }
-    return best;
-  }
-
-  /// The nearest point of the segment from `from` to `to`.
-  static Projection ontoSegment(const Vec3& x, const Vec3& from, const Vec3& to) {
-    const Vec3 edge = to - from;
-    const double length_squared = edge.squaredNorm();
-    const double t = length_squared > 0.0 ? edge.dot(x - from) / length_squared : 0.0;
-    if (!(t > 0.0)) return Projection{from, FactoredHessian::identity()};
-    if (!(t < 1.0)) return Projection{to, FactoredHessian::identity()};
-    return onEdge(from, edge, t);
+    // A sliver: the region test and the face point carry the plane's error; the
+    // nearest edge point (the polygon projection without a plane), when nearer,
+    // is the better answer (exact where x lies on an edge).
+    const Projection on_edges =
+        projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, Vec3::Zero());
+    return (x - on_edges.q).squaredNorm() < (x - by_region.q).squaredNorm() ? on_edges : by_region;
   }
 
   /// The point from + t edge of an edge, 0 < t < 1: psi's Hessian I - e e^T.
