@@ -38,6 +38,23 @@ Transform3d at(const Vector3d& centre, const Vector3d& normal = Vector3d::UnitZ(
 
 const Transform3d kIdentity = Transform3d::Identity();
 
+/// FCL's face list of a box's eight corners (0-3 the -z face, 4-7 the +z face,
+/// each counter-clockwise from (-x, -y) seen from +z): six quadrilaterals,
+/// counter-clockwise seen from outside.
+std::shared_ptr<std::vector<int>> boxFaceList() {
+  return std::make_shared<std::vector<int>>(std::vector<int>{
+      4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
+}
+
+/// The box of full sides (a, b, c) centred at the origin, as an fcl::Convex.
+template <typename S>
+fcl::Convex<S> boxAsConvex(double a, double b, double c) {
+  const S x = S(a / 2), y = S(b / 2), z = S(c / 2);
+  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>(std::vector<fcl::Vector3<S>>{
+      {-x, -y, -z}, {x, -y, -z}, {x, y, -z}, {-x, y, -z}, {-x, -y, z}, {x, -y, z}, {x, y, z}, {-x, y, z}});
+  return fcl::Convex<S>(vertices, 6, boxFaceList());
+}
+
 TEST(DiskShapeCases, HandDerivedDistances) {
   // Disk r = 1 at the origin, normal +z.
   // Box 1 x 1 x 1 centred at (0.2, 0.1, 1.5): its bottom face (z = 1) over the
@@ -168,9 +185,7 @@ TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
   auto segment = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
       {0, 0, 0.3}, {0, 0, 0.3}, {0, 0, 0.3}, {0, 0, 0.3}, {0, 0, 2.4}, {0, 0, 2.4}, {0, 0, 2.4},
       {0, 0, 2.4}});
-  auto box_faces = std::make_shared<std::vector<int>>(std::vector<int>{
-      4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
-  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Convex<double>(segment, 6, box_faces),
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Convex<double>(segment, 6, boxFaceList()),
                                           kIdentity).distance, 0.3, kExact);
   EXPECT_TRUE(fcl_disk::diskShapeIntersect(1.0, kIdentity, flat, at({1.2, 0, 0})));
 }
@@ -346,12 +361,6 @@ void checkNearlyParallelFaces(int kind) {
     const fcl::Transform3<S> X_WS = fcl::Transform3<S>::Identity();
     // The shapes as stored in S, for the reference.
     const double as = double(S(a)), bs = double(S(b)), hs = double(S(h));
-    const std::vector<Vector3d> corners = {{-as / 2, -bs / 2, -hs / 2}, {as / 2, -bs / 2, -hs / 2},
-                                           {as / 2, bs / 2, -hs / 2},   {-as / 2, bs / 2, -hs / 2},
-                                           {-as / 2, -bs / 2, hs / 2},  {as / 2, -bs / 2, hs / 2},
-                                           {as / 2, bs / 2, hs / 2},    {-as / 2, bs / 2, hs / 2}};
-    const std::vector<std::vector<int>> box_faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
-                                                     {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
     const Vector3d ta(-as / 2, -bs / 2, hs / 2), tb(as / 2, -bs / 2, hs / 2), tc(0, bs / 2, hs / 2);
     fcl_disk::DiskShapeDistanceResult<S> result;
     if (kind == 0) {
@@ -360,14 +369,7 @@ void checkNearlyParallelFaces(int kind) {
       result = fcl_disk::diskShapeDistance(
           S(r), X_WD_S, fcl::TriangleP<S>(ta.cast<S>(), tb.cast<S>(), tc.cast<S>()), X_WS);
     } else {
-      auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
-      for (const Vector3d& v : corners) vertices->push_back(v.cast<S>());
-      auto faces = std::make_shared<std::vector<int>>();
-      for (const auto& f : box_faces) {
-        faces->push_back(4);
-        faces->insert(faces->end(), f.begin(), f.end());
-      }
-      result = fcl_disk::diskShapeDistance(S(r), X_WD_S, fcl::Convex<S>(vertices, 6, faces), X_WS);
+      result = fcl_disk::diskShapeDistance(S(r), X_WD_S, boxAsConvex<S>(as, bs, hs), X_WS);
     }
     const double scale = r + 0.5 * std::sqrt(a * a + b * b + h * h) + X_WD.translation().norm();
     bool ok = double(result.certifiedGap()) <= tolerance * scale;
@@ -503,11 +505,7 @@ TEST(DiskShapeCases, PolytopesAtTheEndsOfTheLengthRange) {
     const fcl::TriangleP<double> triangle(k * Vector3d(-1, -1, 0), k * Vector3d(1, -1, 0),
                                           k * Vector3d(0, 1, 0));
     EXPECT_NEAR(fcl_disk::diskShapeDistance(k, kIdentity, triangle, X).distance / k, 2.0, kExact) << k;
-    auto vertices = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
-        {-k, -k, -k}, {k, -k, -k}, {k, k, -k}, {-k, k, -k}, {-k, -k, k}, {k, -k, k}, {k, k, k}, {-k, k, k}});
-    auto faces = std::make_shared<std::vector<int>>(std::vector<int>{
-        4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
-    const fcl::Convex<double> cube(vertices, 6, faces);
+    const fcl::Convex<double> cube = boxAsConvex<double>(2 * k, 2 * k, 2 * k);
     EXPECT_NEAR(fcl_disk::diskShapeDistance(k, kIdentity, cube, X).distance / k, 1.0, kExact) << k;
     EXPECT_NEAR(fcl_disk::diskShapeDistance(k, kIdentity, fcl::Box<double>(2 * k, 2 * k, 2 * k), X).distance / k,
                 1.0, kExact) << k;
