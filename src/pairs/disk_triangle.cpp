@@ -12,15 +12,19 @@ namespace {
 /// so its face projection, is known only to about eps / sine (the cross product
 /// of nearly parallel edges), 1e-13 at this sine; its edges stay exact.
 constexpr double kSliverSine = 1e-3;
+/// The region test's vectors are scaled by the triangle's largest edge entry
+/// while x is within this many of them (fourth powers stay below 1e200).
+constexpr double kFarRatio = 1e50;
 
 /// The closed flat triangle a, b, c, in its frame (a zero-area triangle is the
 /// union of its edges).
 struct TriangleTarget {
   std::array<Vec3, 3> vertices;
-  Vec3 normal;       ///< (b - a) x (c - a), not normalised; zero when degenerate.
+  Vec3 normal;       ///< (b - a) x (c - a) / inverse_edge^2, not normalised; zero when degenerate.
   Vec3 unit_normal;  ///< normal / |normal| (stableNorm: no overflow); zero when degenerate.
   bool sliver;  ///< |normal| < kSliverSine |b - a| |c - a|: the face projection
                 ///< is checked against the edges'.
+  double inverse_edge;  ///< 1 / the largest entry of b - a and c - a (1 if 0).
 
   /// Ericson's region test (Real-Time Collision Detection, 5.1.5): the Voronoi
   /// region of x among the vertices, edges and face decides the nearest point
@@ -34,9 +38,10 @@ struct TriangleTarget {
     const Vec3& b = vertices[1];
     const Vec3& c = vertices[2];
     const Vec3 ab_raw = b - a, ac_raw = c - a, ap_raw = x - a;
-    const double largest = std::max({ab_raw.cwiseAbs().maxCoeff(), ac_raw.cwiseAbs().maxCoeff(),
-                                     ap_raw.cwiseAbs().maxCoeff()});
-    const double inverse = largest > 0.0 ? 1.0 / largest : 1.0;
+    // The triangle's own scale, unless x is so far that (|ap| / edge)^4 could
+    // overflow: then |ap|'s.
+    const double ap_largest = ap_raw.cwiseAbs().maxCoeff();
+    const double inverse = ap_largest * inverse_edge <= kFarRatio ? inverse_edge : 1.0 / ap_largest;
     const Vec3 ab = inverse * ab_raw, ac = inverse * ac_raw, ap = inverse * ap_raw;
     const double d1 = ab.dot(ap), d2 = ac.dot(ap);
     if (d1 <= 0.0 && d2 <= 0.0) return Projection{a, FactoredHessian::identity()};
@@ -119,14 +124,18 @@ struct TriangleTraits {
   static TriangleTarget target(const fcl::TriangleP<S>& triangle) {
     TriangleTarget target{{triangle.a.template cast<double>(), triangle.b.template cast<double>(),
                            triangle.c.template cast<double>()},
-                          Vec3::Zero(), Vec3::Zero(), false};
-    const Vec3 ab = target.vertices[1] - target.vertices[0];
-    const Vec3 ac = target.vertices[2] - target.vertices[0];
+                          Vec3::Zero(), Vec3::Zero(), false, 1.0};
+    const Vec3 ab_raw = target.vertices[1] - target.vertices[0];
+    const Vec3 ac_raw = target.vertices[2] - target.vertices[0];
+    const double edge_largest = std::max(ab_raw.cwiseAbs().maxCoeff(), ac_raw.cwiseAbs().maxCoeff());
+    if (edge_largest > 0.0) target.inverse_edge = 1.0 / edge_largest;
+    // In edges scaled to entries <= 1: the normal's norm and the sliver test's
+    // products cannot overflow (raw, they are fourth powers of lengths).
+    const Vec3 ab = target.inverse_edge * ab_raw, ac = target.inverse_edge * ac_raw;
     target.normal = ab.cross(ac);
-    const double area = target.normal.stableNorm();
+    const double area = target.normal.norm();
     if (area > 0.0) target.unit_normal = target.normal / area;
-    // |ab x ac| < kSliverSine |ab| |ac|, in norms (their squares' products overflow).
-    target.sliver = area < kSliverSine * ab.stableNorm() * ac.stableNorm();
+    target.sliver = area * area < kSliverSine * kSliverSine * ab.squaredNorm() * ac.squaredNorm();
     return target;
   }
   /// The triangle's normal.
