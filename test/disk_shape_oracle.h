@@ -139,31 +139,39 @@ inline Real pointToMeridianTriangle(Real rho, Real z, Real radius, Real h) {
   return std::min({to_segment(p, apex, rim), to_segment(p, rim, centre), to_segment(p, centre, apex)});
 }
 
-/// Distance from p to the solid ellipsoid with semi-axes e (> 0), by bisection on
-/// the root t of sum (e_i y_i / (t + e_i^2))^2 = 1 (Eberly), 200 halvings.
+/// Distance from p to the solid ellipsoid with semi-axes e (>= 0; a zero
+/// semi-axis flattens it: an ellipse, a segment, a point), by bisection on the
+/// root t of sum over nonzero e_i of (e_i y_i / (t + e_i^2))^2 = 1 (Eberly),
+/// 200 halvings.
 inline Real pointToEllipsoid(const V3& p, const V3& e) {
   Real level = 0;
-  for (int i = 0; i < 3; ++i) level += (p[i] / e[i]) * (p[i] / e[i]);
+  for (int i = 0; i < 3; ++i) {
+    if (e[i] > 0) {
+      level += (p[i] / e[i]) * (p[i] / e[i]);
+    } else if (p[i] != 0) {
+      level = std::numeric_limits<Real>::infinity();
+    }
+  }
   if (level <= 1) return 0;
+  auto ratio = [&](int i, Real t) { return e[i] > 0 ? e[i] * p[i] / (t + e[i] * e[i]) : Real(0); };
   Real lo = 0, hi = 0;
   for (int i = 0; i < 3; ++i) hi = std::max(hi, std::abs(e[i] * p[i]));
   hi *= 2;
   auto F = [&](Real t) {
     Real sum = 0;
-    for (int i = 0; i < 3; ++i) {
-      const Real ratio = e[i] * p[i] / (t + e[i] * e[i]);
-      sum += ratio * ratio;
-    }
+    for (int i = 0; i < 3; ++i) sum += ratio(i, t) * ratio(i, t);
     return sum - 1;
   };
-  while (F(hi) > 0) hi *= 2;
-  for (int k = 0; k < 200; ++k) {
-    const Real mid = (lo + hi) / 2;
-    (F(mid) > 0 ? lo : hi) = mid;
+  if (hi > 0) {
+    while (F(hi) > 0) hi *= 2;
+    for (int k = 0; k < 200; ++k) {
+      const Real mid = (lo + hi) / 2;
+      (F(mid) > 0 ? lo : hi) = mid;
+    }
   }
   const Real t = (lo + hi) / 2;
   V3 q;
-  for (int i = 0; i < 3; ++i) q[i] = e[i] * e[i] * p[i] / (t + e[i] * e[i]);
+  for (int i = 0; i < 3; ++i) q[i] = e[i] * ratio(i, t);
   return (p - q).norm();
 }
 
