@@ -37,6 +37,7 @@
 #include "fcl_disk/disk_shape_distance.h"
 #include "fcl_disk/exact_distance.h"
 #include "fcl_disk/fcl_templates.h"
+#include "disk_narrowphase.h"
 
 namespace fcl_disk {
 namespace {
@@ -254,12 +255,212 @@ std::size_t answerDiskShapeCollision(const Disk<S>& disk, const Transform3<S>& X
                                      fcl::CollisionResult<S>& result) {
   const auto intersect = [&](DiskContact<S>* contact) {
     if (!diskShapeIntersect(disk.radius, X_WD, shape, X_WS, contact)) return false;
-    if (!disk_first) contact->normal = -contact->normal;
+    if (contact && !disk_first) contact->normal = -contact->normal;
     return true;
   };
   return disk_first
              ? answerCollision(disk, X_WD, shape, X_WS, request, result, intersect)
              : answerCollision(shape, X_WS, disk, X_WD, request, result, intersect);
+}
+
+// ---------------------------------------------------------------------------
+// 1c. Meshes and octrees: the node types whose FCL function is a traversal
+//     template over the shape and a narrowphase solver. For a Disk, fcl_disk
+//     runs the same template with Shape = Disk and DiskNarrowPhase
+//     (src/disk_narrowphase.h), whose leaf tests are the exact disk-triangle and
+//     disk-box solvers, and the Disk's tight bounding volumes
+//     (include/fcl_disk/disk_bv.h). FCL's traversal, result and contact
+//     conventions are kept. FCL's tables have a mesh only as o1 (fcl::distance
+//     and fcl::collide swap a shape-mesh pair); an octree is either.
+
+template <typename S>
+const internal::DiskNarrowPhase<S> kDiskNarrowPhase{};
+
+template <int NodeType, typename S>
+struct DiskEnvironment {
+  static constexpr bool kAnswered = false;  // not answered by fcl_disk
+};
+
+template <typename BV>
+struct DiskMeshTraversal {
+  static constexpr bool kAnswered = true;
+  using S = typename BV::S;
+  using Narrow = internal::DiskNarrowPhase<S>;
+  /// FCL's oriented bounding volumes (RSS, kIOS, OBBRSS) come with a distance
+  /// traversal that works in the mesh's frame (FCL's BVHShapeDistancer). For
+  /// the others FCL 0.7 has none that works: its generic one would copy and
+  /// rebuild the mesh in the world frame per query, links to an initialize()
+  /// it declares but never defines, and OBB and KDOP have no BV distance. Here
+  /// they share one traversal in the mesh's frame M: the disk posed there
+  /// (X_MD), each node's axis-aligned box in M against the disk's tight box in
+  /// M as the lower bound, the points mapped to the world at the end.
+  static constexpr bool kOriented = std::is_same<BV, fcl::RSS<S>>::value ||
+                                    std::is_same<BV, fcl::kIOS<S>>::value ||
+                                    std::is_same<BV, fcl::OBBRSS<S>>::value;
+
+  struct MeshFrameDistanceNode
+      : fcl::detail::MeshShapeDistanceTraversalNode<BV, Disk<S>, Narrow> {
+    fcl::AABB<S> disk_box_M;
+    S BVTesting(int b1, int) const override {
+      if (this->enable_statistics) this->num_bv_tests++;
+      return axisAlignedBoxOf(this->model1->getBV(b1).bv).distance(disk_box_M);
+    }
+  };
+
+  static fcl::AABB<S> axisAlignedBoxOf(const fcl::AABB<S>& box) { return box; }
+  static fcl::AABB<S> axisAlignedBoxOf(const fcl::OBB<S>& obb) {
+    const fcl::Vector3<S> half = obb.axis.cwiseAbs() * obb.extent;
+    return fcl::AABB<S>(obb.To - half, obb.To + half);
+  }
+  template <std::size_t N>
+  static fcl::AABB<S> axisAlignedBoxOf(const fcl::KDOP<S, N>& kdop) {
+    // FCL's first three k-DOP directions are the axes.
+    return fcl::AABB<S>(fcl::Vector3<S>(kdop.dist(0), kdop.dist(1), kdop.dist(2)),
+                        fcl::Vector3<S>(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2)));
+  }
+
+  static S distance(const CollisionGeometry<S>* mesh, const Transform3<S>& X_WM,
+                    const Disk<S>& disk, const Transform3<S>& X_WD,
+                    const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+    if constexpr (kOriented) {
+      return fcl::detail::BVHShapeDistancer<BV, Disk<S>, Narrow>::distance(
+          mesh, X_WM, &disk, X_WD, &kDiskNarrowPhase<S>, request, result);
+    } else {
+      if (request.isSatisfied(result)) return result.min_distance;
+      const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
+      if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES) return result.min_distance;
+      const Transform3<S> X_MD = X_WM.inverse(Eigen::Isometry) * X_WD;
+      fcl::DistanceResult<S> in_mesh_frame;
+      MeshFrameDistanceNode node;
+      node.request = request;
+      node.result = &in_mesh_frame;
+      node.model1 = &model;
+      node.tf1.setIdentity();
+      node.model2 = &disk;
+      node.tf2 = X_MD;
+      node.nsolver = &kDiskNarrowPhase<S>;
+      node.vertices = model.vertices;
+      node.tri_indices = model.tri_indices;
+      fcl::computeBV(disk, X_MD, node.model2_bv);
+      node.disk_box_M = diskWorldAABB(disk.radius, X_MD);
+      fcl::detail::distance(&node);
+      if (in_mesh_frame.min_distance < result.min_distance) {
+        result.update(in_mesh_frame.min_distance, mesh, &disk, in_mesh_frame.b1,
+                      fcl::DistanceResult<S>::NONE, X_WM * in_mesh_frame.nearest_points[0],
+                      X_WM * in_mesh_frame.nearest_points[1]);
+      }
+      return result.min_distance;
+    }
+  }
+
+  static std::size_t collide(const CollisionGeometry<S>* mesh, const Transform3<S>& X_WM,
+                             const Disk<S>& disk, const Transform3<S>& X_WD,
+                             const fcl::CollisionRequest<S>& request,
+                             fcl::CollisionResult<S>& result) {
+    return fcl::detail::BVHShapeCollider<BV, Disk<S>, Narrow>::collide(
+        mesh, X_WM, &disk, X_WD, &kDiskNarrowPhase<S>, request, result);
+  }
+};
+
+#define FCL_DISK_MESH(node_type, ...) \
+  template <typename S>               \
+  struct DiskEnvironment<fcl::node_type, S> : DiskMeshTraversal<__VA_ARGS__> {};
+
+FCL_DISK_MESH(BV_AABB, fcl::AABB<S>)
+FCL_DISK_MESH(BV_OBB, fcl::OBB<S>)
+FCL_DISK_MESH(BV_RSS, fcl::RSS<S>)
+FCL_DISK_MESH(BV_kIOS, fcl::kIOS<S>)
+FCL_DISK_MESH(BV_OBBRSS, fcl::OBBRSS<S>)
+FCL_DISK_MESH(BV_KDOP16, fcl::KDOP<S, 16>)
+FCL_DISK_MESH(BV_KDOP18, fcl::KDOP<S, 18>)
+FCL_DISK_MESH(BV_KDOP24, fcl::KDOP<S, 24>)
+#undef FCL_DISK_MESH
+
+template <typename S>
+struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
+  static constexpr bool kAnswered = true;
+  using Narrow = internal::DiskNarrowPhase<S>;
+  static S distance(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
+                    const Disk<S>& disk, const Transform3<S>& X_WD,
+                    const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+    return fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, X_WO, &disk, X_WD,
+                                                             &kDiskNarrowPhase<S>, request, result);
+  }
+  static S distanceDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
+                             const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
+                             const fcl::DistanceRequest<S>& request,
+                             fcl::DistanceResult<S>& result) {
+    return fcl::detail::ShapeOcTreeDistance<Disk<S>, Narrow>(&disk, X_WD, octree, X_WO,
+                                                             &kDiskNarrowPhase<S>, request, result);
+  }
+  static std::size_t collide(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
+                             const Disk<S>& disk, const Transform3<S>& X_WD,
+                             const fcl::CollisionRequest<S>& request,
+                             fcl::CollisionResult<S>& result) {
+    return fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(octree, X_WO, &disk, X_WD,
+                                                            &kDiskNarrowPhase<S>, request, result);
+  }
+  static std::size_t collideDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
+                                      const CollisionGeometry<S>* octree,
+                                      const Transform3<S>& X_WO,
+                                      const fcl::CollisionRequest<S>& request,
+                                      fcl::CollisionResult<S>& result) {
+    return fcl::detail::ShapeOcTreeCollide<Disk<S>, Narrow>(&disk, X_WD, octree, X_WO,
+                                                            &kDiskNarrowPhase<S>, request, result);
+  }
+};
+
+template <int NodeType, typename S>
+constexpr bool kHasDiskEnvironment = DiskEnvironment<NodeType, S>::kAnswered;
+
+/// Whether a pair of a Disk and a mesh or octree describes a query: the disk's
+/// pose and radius are a disk's and the other pose is finite (FCL's traversal
+/// would run GJK-free but on NaN boxes). Otherwise the answer is NaN / no contact.
+template <typename S>
+bool isDiskEnvironmentPair(const Disk<S>& disk, const Transform3<S>& X_WD,
+                           const Transform3<S>& X_WE) {
+  return isValidDiskPose(X_WD) && isValidDiskRadius(disk.radius) && X_WE.matrix().allFinite();
+}
+
+/// Distance between a Disk and a mesh or octree (node type EnvType), in FCL's
+/// argument order: the disk is o1 when `disk_first` (octrees only).
+template <int EnvType, typename S>
+S answerDiskEnvironmentDistance(const Disk<S>& disk, const Transform3<S>& X_WD,
+                                const CollisionGeometry<S>* environment,
+                                const Transform3<S>& X_WE, bool disk_first,
+                                const fcl::DistanceRequest<S>& request,
+                                fcl::DistanceResult<S>& result) {
+  if (distanceIsSettled(result)) return result.min_distance;
+  ++t_disk_answers;
+  if (!isDiskEnvironmentPair(disk, X_WD, X_WE)) {
+    return disk_first ? answerNoDistance<S>(&disk, environment, result)
+                      : answerNoDistance<S>(environment, &disk, result);
+  }
+  using Environment = DiskEnvironment<EnvType, S>;
+  if constexpr (EnvType == fcl::GEOM_OCTREE) {
+    if (disk_first) return Environment::distanceDiskFirst(disk, X_WD, environment, X_WE, request, result);
+  }
+  return Environment::distance(environment, X_WE, disk, X_WD, request, result);
+}
+
+/// Collision between a Disk and a mesh or octree, in FCL's argument order.
+template <int EnvType, typename S>
+std::size_t answerDiskEnvironmentCollision(const Disk<S>& disk, const Transform3<S>& X_WD,
+                                           const CollisionGeometry<S>* environment,
+                                           const Transform3<S>& X_WE, bool disk_first,
+                                           const fcl::CollisionRequest<S>& request,
+                                           fcl::CollisionResult<S>& result) {
+  if (request.isSatisfied(result)) return result.numContacts();
+  ++t_disk_answers;
+  // No contact can be shown for input that describes no pose.
+  if (!isDiskEnvironmentPair(disk, X_WD, X_WE)) return result.numContacts();
+  using Environment = DiskEnvironment<EnvType, S>;
+  if constexpr (EnvType == fcl::GEOM_OCTREE) {
+    if (disk_first) {
+      return Environment::collideDiskFirst(disk, X_WD, environment, X_WE, request, result);
+    }
+  }
+  return Environment::collide(environment, X_WE, disk, X_WD, request, result);
 }
 
 // ---------------------------------------------------------------------------
@@ -302,7 +503,9 @@ using PairShape = typename DiskPairShape<NodeType, S>::type;
 
 template <typename S, int Row, int Col>
 constexpr bool kSlotAnswersDisks = (Row == fcl::GEOM_CYLINDER && kHasDiskPair<Col, S>) ||
-                                   (Col == fcl::GEOM_CYLINDER && kHasDiskPair<Row, S>);
+                                   (Col == fcl::GEOM_CYLINDER && kHasDiskPair<Row, S>) ||
+                                   (Col == fcl::GEOM_CYLINDER && kHasDiskEnvironment<Row, S>) ||
+                                   (Row == fcl::GEOM_CYLINDER && Col == fcl::GEOM_OCTREE);
 
 template <typename S, typename Solver, int Table, int Row, int Col>
 struct DistanceSlot {
@@ -329,6 +532,18 @@ struct DistanceSlot {
       if (disk2) {
         return answerDiskShapeDistance(*disk2, tf2, static_cast<const PairShape<Row, S>&>(*o1),
                                        tf1, /*disk_first=*/false, result);
+      }
+    }
+    if constexpr (Col == fcl::GEOM_CYLINDER && kHasDiskEnvironment<Row, S>) {
+      if (disk2) {
+        return answerDiskEnvironmentDistance<Row>(*disk2, tf2, o1, tf1, /*disk_first=*/false,
+                                                  request, result);
+      }
+    }
+    if constexpr (Row == fcl::GEOM_CYLINDER && Col == fcl::GEOM_OCTREE) {
+      if (disk1) {
+        return answerDiskEnvironmentDistance<Col>(*disk1, tf1, o2, tf2, /*disk_first=*/true,
+                                                  request, result);
       }
     }
     if ((disk1 || disk2) && !fitForFcl(disk1, tf1, disk2, tf2)) {
@@ -367,6 +582,18 @@ struct CollisionSlot {
       if (disk2) {
         return answerDiskShapeCollision(*disk2, tf2, static_cast<const PairShape<Row, S>&>(*o1),
                                         tf1, /*disk_first=*/false, request, result);
+      }
+    }
+    if constexpr (Col == fcl::GEOM_CYLINDER && kHasDiskEnvironment<Row, S>) {
+      if (disk2) {
+        return answerDiskEnvironmentCollision<Row>(*disk2, tf2, o1, tf1, /*disk_first=*/false,
+                                                   request, result);
+      }
+    }
+    if constexpr (Row == fcl::GEOM_CYLINDER && Col == fcl::GEOM_OCTREE) {
+      if (disk1) {
+        return answerDiskEnvironmentCollision<Col>(*disk1, tf1, o2, tf2, /*disk_first=*/true,
+                                                   request, result);
       }
     }
     // No contact can be shown for input that describes no pose.

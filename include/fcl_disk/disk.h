@@ -69,3 +69,7 @@ using Diskd = Disk<double>;  ///< A Disk in double.
 using Diskf = Disk<float>;   ///< A Disk in float.
 
 }  // namespace fcl_disk
+
+// Disk's tight bounding volumes for fcl::computeBV: declared with the class, so
+// that every use of computeBV on a Disk sees them.
+#include <fcl_disk/disk_bv.h>

@@ -4,6 +4,7 @@
 #include <fcl_disk/almohamad_selim.h>
 #include <fcl_disk/disk.h>
 #include <fcl_disk/disk_aabb.h>
+#include <fcl_disk/disk_bv.h>
 #include <fcl_disk/disk_intersection.h>
 #include <fcl_disk/disk_pair.h>
 #include <fcl_disk/disk_shape_distance.h>
