@@ -353,12 +353,62 @@ struct DiskMeshTraversal {
     }
   }
 
+  /// Collision: FCL's oriented traversals (OBB, RSS, kIOS, OBBRSS) as they
+  /// are. For AABB and KDOP meshes FCL copies the mesh into the world frame and
+  /// rebuilds its hierarchy on every query; the same traversal runs here in the
+  /// mesh's frame instead, contacts mapped to the world at the end. With
+  /// enable_cost FCL's path is kept, so that cost sources are FCL's
+  /// world-frame boxes.
+  static constexpr bool kCollidesOnWorldCopy =
+      std::is_same<BV, fcl::AABB<S>>::value || std::is_same<BV, fcl::KDOP<S, 16>>::value ||
+      std::is_same<BV, fcl::KDOP<S, 18>>::value || std::is_same<BV, fcl::KDOP<S, 24>>::value;
+
   static std::size_t collide(const CollisionGeometry<S>* mesh, const Transform3<S>& X_WM,
                              const Disk<S>& disk, const Transform3<S>& X_WD,
                              const fcl::CollisionRequest<S>& request,
                              fcl::CollisionResult<S>& result) {
+    if constexpr (kCollidesOnWorldCopy) {
+      if (!request.enable_cost) return collideInMeshFrame(mesh, X_WM, disk, X_WD, request, result);
+    }
     return fcl::detail::BVHShapeCollider<BV, Disk<S>, Narrow>::collide(
         mesh, X_WM, &disk, X_WD, &kDiskNarrowPhase<S>, request, result);
+  }
+
+  static std::size_t collideInMeshFrame(const CollisionGeometry<S>* mesh,
+                                        const Transform3<S>& X_WM, const Disk<S>& disk,
+                                        const Transform3<S>& X_WD,
+                                        const fcl::CollisionRequest<S>& request,
+                                        fcl::CollisionResult<S>& result) {
+    if (request.isSatisfied(result)) return result.numContacts();
+    const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
+    if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES) return result.numContacts();
+    // Not satisfied without enable_cost: room for at least one more contact.
+    fcl::CollisionRequest<S> room_left = request;
+    room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
+    fcl::CollisionResult<S> in_mesh_frame;
+    fcl::detail::MeshShapeCollisionTraversalNode<BV, Disk<S>, Narrow> node;
+    const Transform3<S> X_MD = X_WM.inverse(Eigen::Isometry) * X_WD;
+    node.model1 = &model;
+    node.tf1.setIdentity();
+    node.model2 = &disk;
+    node.tf2 = X_MD;
+    node.nsolver = &kDiskNarrowPhase<S>;
+    fcl::computeBV(disk, X_MD, node.model2_bv);
+    node.vertices = model.vertices;
+    node.tri_indices = model.tri_indices;
+    node.request = room_left;
+    node.result = &in_mesh_frame;
+    node.cost_density = model.cost_density * disk.cost_density;
+    fcl::detail::collide(&node);
+    for (std::size_t i = 0; i < in_mesh_frame.numContacts(); ++i) {
+      fcl::Contact<S> contact = in_mesh_frame.getContact(i);
+      if (request.enable_contact) {
+        contact.pos = X_WM * contact.pos;
+        contact.normal = X_WM.linear() * contact.normal;
+      }
+      result.addContact(contact);
+    }
+    return result.numContacts();
   }
 };
 

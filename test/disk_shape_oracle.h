@@ -170,7 +170,7 @@ inline Real pointToEllipsoid(const V3& p, const V3& e) {
     }
   }
   const Real t = (lo + hi) / 2;
-  V3 q;
+  V3 q = V3::Zero();
   for (int i = 0; i < 3; ++i) q[i] = e[i] * ratio(i, t);
   return (p - q).norm();
 }
