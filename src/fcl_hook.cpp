@@ -436,12 +436,21 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
     return fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, X_WO, &disk, X_WD,
                                                              &kDiskNarrowPhase<S>, request, result);
   }
+  /// FCL's shape-octree functions report the octree as o1 (their points, ids
+  /// and normals in octree-shape order) whatever the argument order; with the
+  /// disk as o1 the answer is put in the caller's order, as for every other pair.
   static S distanceDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
                              const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                              const fcl::DistanceRequest<S>& request,
                              fcl::DistanceResult<S>& result) {
-    return fcl::detail::ShapeOcTreeDistance<Disk<S>, Narrow>(&disk, X_WD, octree, X_WO,
-                                                             &kDiskNarrowPhase<S>, request, result);
+    fcl::DistanceResult<S> octree_first;
+    distance(octree, X_WO, disk, X_WD, request, octree_first);
+    if (octree_first.min_distance < result.min_distance) {
+      result.update(octree_first.min_distance, &disk, octree, fcl::DistanceResult<S>::NONE,
+                    octree_first.b1, octree_first.nearest_points[1],
+                    octree_first.nearest_points[0]);
+    }
+    return result.min_distance;
   }
   static std::size_t collide(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                              const Disk<S>& disk, const Transform3<S>& X_WD,
@@ -455,8 +464,19 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
                                       const Transform3<S>& X_WO,
                                       const fcl::CollisionRequest<S>& request,
                                       fcl::CollisionResult<S>& result) {
-    return fcl::detail::ShapeOcTreeCollide<Disk<S>, Narrow>(&disk, X_WD, octree, X_WO,
-                                                            &kDiskNarrowPhase<S>, request, result);
+    fcl::CollisionRequest<S> room_left = request;
+    room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
+    fcl::CollisionResult<S> octree_first;
+    collide(octree, X_WO, disk, X_WD, room_left, octree_first);
+    for (std::size_t i = 0; i < octree_first.numContacts(); ++i) {
+      const fcl::Contact<S>& c = octree_first.getContact(i);
+      result.addContact(fcl::Contact<S>(&disk, octree, fcl::Contact<S>::NONE, c.b1, c.pos,
+                                        -c.normal, c.penetration_depth));
+    }
+    std::vector<fcl::CostSource<S>> costs;
+    octree_first.getCostSources(costs);
+    for (const auto& cost : costs) result.addCostSource(cost, request.num_max_cost_sources);
+    return result.numContacts();
   }
 };
 
