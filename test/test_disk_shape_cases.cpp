@@ -117,6 +117,45 @@ TEST(DiskShapeCases, HandDerivedDistances) {
                                         kIdentity).distance, 0.0);
 }
 
+// A needle: an ellipsoid with one semi-axis of 0.1 and two far below any
+// scene length (1e-8 .. 1e-140), crossing or passing a disk in random tilts.
+// Its projection's root t is then far below e_max^2: the secular iteration
+// must close its bracket relative to the tiny axes, or the shape point lands
+// off the needle (0.1 off, fuzz_disk_shapes; corpus regression-ellipsoid-needle).
+TEST(DiskShapeCases, NeedleEllipsoidPointsStayOnTheNeedle) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (double tiny : {1e-8, 1e-20, 1e-60, 1e-100, 4.2e-113, 1e-140}) {
+    for (int k = 0; k < 100; ++k) {
+      // Crossing: the disk's plane through the needle's centre (the origin),
+      // which lies inside the disk; passing: the disk 0.3 along its normal.
+      const Vector3d normal = Vector3d(unit(rng), unit(rng), unit(rng)).normalized();
+      const Vector3d in_plane = normal.cross(Vector3d(unit(rng), unit(rng), unit(rng))).normalized();
+      const double lift = k % 2 == 0 ? 0.0 : 0.3;
+      Transform3d X_WD = at(0.2 * in_plane - lift * normal, normal);
+      // Half the poses with a rotation 2.4e-7 off orthonormal (accepted, used
+      // as given), which sends the crossing pairs through the iteration.
+      if (k % 4 >= 2) X_WD.linear().col(1) *= 1 + 2.4e-7;
+      // The needle along the disk's normal (half the poses) or turned at random.
+      Transform3d X_WS = Transform3d::Identity();
+      if (k % 8 < 4) {
+        X_WS.linear().col(0) = in_plane;
+        X_WS.linear().col(1) = normal;
+        X_WS.linear().col(2) = in_plane.cross(normal);
+      } else {
+        X_WS.linear() = Eigen::Quaterniond(unit(rng), unit(rng), unit(rng), unit(rng)).normalized().toRotationMatrix();
+      }
+      const fcl::Ellipsoid<double> needle(tiny, 0.1, tiny);
+      const auto answer = fcl_disk::diskShapeDistance(0.5, X_WD, needle, X_WS);
+      const Vector3d q_S = X_WS.inverse() * answer.p_W_shape;
+      // On the needle: within `tiny` of the segment of half-length 0.1 along its y axis.
+      EXPECT_LE(std::hypot(q_S.x(), q_S.z()), tiny + kExact) << "tiny " << tiny << " pose " << k;
+      EXPECT_LE(std::abs(q_S.y()), 0.1 + kExact) << "tiny " << tiny << " pose " << k;
+      EXPECT_NEAR((answer.p_W_disk - answer.p_W_shape).norm(), answer.distance, kExact);
+    }
+  }
+}
+
 TEST(DiskShapeCases, DegenerateShapesAreTheSetsTheyAre) {
   const Transform3d above = at({0.3, 0.2, 0.8});
   // A zero-size box and a zero-radius sphere are the point (0.3, 0.2, 0.8): 0.8.

@@ -68,7 +68,10 @@ struct EllipsoidTarget {
     // would leave the bracket or does not halve its step, as where a tiny
     // semi-axis makes F stiff and Newton's steps minute; done when q is on the
     // surface to rounding (|phi| = |F^-1/2 - 1| <= tolerance) or the bracket
-    // has closed. A small step alone proves nothing there.
+    // has closed. A small step alone proves nothing there. Closed means
+    // relative to t + e_min^2: q_i = e_i^2 y_i / (t + e_i^2) moves by
+    // dt / (t + e_i^2) of itself, so a bracket narrow against e_max^2 can still
+    // be wide against a tiny axis's e_i^2 (e_min >= kFlatSemiAxis: no underflow).
     double t = lo;
     double step = hi - lo, step_before = step;
     for (int iteration = 0; iteration < kMaxSecularSteps; ++iteration) {
@@ -76,7 +79,7 @@ struct EllipsoidTarget {
       const double value = phi(t, &derivative);
       if (value < 0.0) lo = t; else hi = t;
       if (!(std::abs(value) > kSecularRootTolerance)) break;
-      if (hi - lo <= kSecularRootTolerance * std::max(t, e_max * e_max)) break;
+      if (hi - lo <= kSecularRootTolerance * std::max(t, e_min * e_min)) break;
       const double newton = derivative > 0.0 ? value / derivative
                                              : std::numeric_limits<double>::infinity();
       step_before = step;
