@@ -2,6 +2,8 @@
 //   1. what a disk-disk entry does (distance, collision);
 //   1b. the table of the other shapes a Disk is answered against by fcl_disk,
 //      and what such an entry does;
+//   1c. the table of meshes and octrees: FCL's traversals with fcl_disk's
+//      narrowphase solver at the leaves;
 //   2. the wrappers that sit in FCL's GEOM_CYLINDER row and column and forward
 //      every pair fcl_disk does not answer to FCL's original function;
 //   3. installing them into the tables user code sees, and into the private
@@ -536,7 +538,8 @@ std::size_t answerDiskEnvironmentCollision(const Disk<S>& disk, const Transform3
 // ---------------------------------------------------------------------------
 // 2. Wrappers for the slots of FCL's tables that can see a Disk: the
 //    GEOM_CYLINDER row and column. Disk-disk pairs and a Disk against a shape
-//    of the table of section 1b get fcl_disk's answers; a pair with one Disk
+//    of the table of section 1b or a mesh or octree of section 1c get
+//    fcl_disk's answers; a pair with one Disk
 //    whose poses describe no disk pair gets NaN / no contact (FCL's GJK would
 //    abort on NaN, facts: Debian keeps asserts on); every other pair, real
 //    cylinders included, goes to FCL's original entry unchanged.
