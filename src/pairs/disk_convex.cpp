@@ -4,6 +4,9 @@
 #include "../disk_shape_pair.h"
 #include "polygon_projection.h"
 
+#include <array>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace fcl_disk {
@@ -33,9 +36,16 @@ struct ConvexFace {
 /// face planes and balls (Newell's normals), whether the polytope is flat, and
 /// its largest face.
 struct ConvexGeometry {
+  bool valid = false;  ///< ConvexTraits::valid's verdict on the lists
   std::vector<ConvexFace> faces;
+  /// Per face: its triangle projection when it is a triangle (most hulls).
+  std::vector<TriangleProjection> triangles;
+  /// The face planes again, one array per coordinate, so that the height scan
+  /// of every projection runs vectorised: n_x, n_y, n_z, offset.
+  std::array<std::vector<double>, 4> planes;
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
+  double bounding_radius = 0.0;  ///< the largest vertex norm
 };
 
 /// The geometry of the Convex queried last on this thread, with a copy of the
@@ -49,6 +59,7 @@ struct ConvexGeometryCache {
   std::vector<int> face_list;
   int face_count = -1;
   ConvexGeometry geometry;
+  const void* verified = nullptr;  ///< the hull whose lists geometryOf() compared last
 };
 
 /// FCL's Convex: vertices, and faces encoded [k, i_1..i_k, k', ...], each listed
@@ -60,6 +71,8 @@ struct ConvexTarget {
   const fcl::Convex<S>* convex;
   const int* list;                   ///< FCL's face list
   const std::vector<ConvexFace>& faces;
+  const std::vector<TriangleProjection>& triangles;
+  const std::array<std::vector<double>, 4>& planes;
   int largest_face;
   bool flat;
 
@@ -67,35 +80,68 @@ struct ConvexTarget {
       : convex(&shape),
         list(shape.getFaces().data()),
         faces(geometry.faces),
+        triangles(geometry.triangles),
+        planes(geometry.planes),
         largest_face(geometry.largest_face),
         flat(geometry.flat) {}
 
-  /// This thread's geometry of `shape`, from the cache when its lists are
-  /// unchanged.
-  static const ConvexGeometry& geometryOf(const fcl::Convex<S>& shape) {
+  static ConvexGeometryCache<S>& cache() {
     thread_local ConvexGeometryCache<S> cache;
+    return cache;
+  }
+
+  /// This thread's geometry of `shape`, from the cache when its lists are
+  /// unchanged (compared value for value); `shape` is then the cache's
+  /// verified hull.
+  static const ConvexGeometry& geometryOf(const fcl::Convex<S>& shape) {
+    ConvexGeometryCache<S>& cached = cache();
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
-    if (cache.face_count == shape.getFaceCount() && cache.vertices == vertices &&
-        cache.face_list == face_list) {
-      return cache.geometry;
+    if (!(cached.face_count == shape.getFaceCount() && cached.vertices == vertices &&
+          cached.face_list == face_list)) {
+      cached.face_count = -1;  // invalid while rebuilt
+      cached.verified = nullptr;
+      cached.vertices = vertices;
+      cached.face_list = face_list;
+      cached.geometry = computeGeometry(shape);
+      cached.face_count = shape.getFaceCount();
     }
-    cache.face_count = -1;  // invalid while rebuilt
-    cache.vertices = vertices;
-    cache.face_list = face_list;
-    cache.geometry = computeGeometry(shape);
-    cache.face_count = shape.getFaceCount();
-    return cache.geometry;
+    cached.verified = &shape;
+    return cached.geometry;
+  }
+
+  /// The geometry of the hull geometryOf() verified last on this thread, when
+  /// that is `shape`: within one query (ConvexTraits::valid first, then
+  /// boundingRadius and target) the lists are compared once.
+  static const ConvexGeometry& verifiedGeometryOf(const fcl::Convex<S>& shape) {
+    const ConvexGeometryCache<S>& cached = cache();
+    return cached.verified == &shape ? cached.geometry : geometryOf(shape);
+  }
+
+  /// |v| without overflow or underflow: the plain square root where the
+  /// square is a normal double (almost always), stableNorm otherwise.
+  static double safeNorm(const Vec3& v) {
+    const double squared = v.squaredNorm();
+    if (squared >= std::numeric_limits<double>::min() && squared <= std::numeric_limits<double>::max()) {
+      return std::sqrt(squared);
+    }
+    return v.stableNorm();
   }
 
   static ConvexGeometry computeGeometry(const fcl::Convex<S>& shape) {
     ConvexGeometry geometry;
+    geometry.valid = listsAreValid(shape);
+    if (!geometry.valid) return geometry;
     const auto vertex = [&](int index) { return shape.getVertices()[index].template cast<double>(); };
+    for (const auto& v : shape.getVertices()) {
+      geometry.bounding_radius = std::max(geometry.bounding_radius, safeNorm(v.template cast<double>()));
+    }
     const std::vector<int>& list = shape.getFaces();
     std::vector<ConvexFace>& faces = geometry.faces;
     int& largest_face = geometry.largest_face;
     bool& flat = geometry.flat;
     faces.reserve(shape.getFaceCount());
+    geometry.triangles.resize(shape.getFaceCount());
     std::size_t at = 0;
     double largest_area = -1.0;
     Vec3 first_normal = Vec3::Zero();
@@ -107,13 +153,14 @@ struct ConvexTarget {
       if (count == 3) {
         const Vec3 a = vertex(index[0]);
         normal = (vertex(index[1]) - a).cross(vertex(index[2]) - a);
+        geometry.triangles[f] = TriangleProjection(a, vertex(index[1]), vertex(index[2]));
       } else {
         normal = vertex(index[count - 1]).cross(vertex(index[0]));
         for (int i = 0; i + 1 < count; ++i) normal += vertex(index[i]).cross(vertex(index[i + 1]));
       }
-      // stableNorm and unit normals: |normal| is a squared length and the
-      // cross product of two normals a fourth power, beyond double at 1e100.
-      const double area = normal.stableNorm();
+      // |normal| is a squared length and the cross product of two normals a
+      // fourth power, beyond double at 1e100: safeNorm and unit normals.
+      const double area = safeNorm(normal);
       if (area > largest_area) largest_area = area, largest_face = f;
       const Vec3 unit = area > 0.0 ? Vec3(normal / area) : Vec3::Zero();
       if (area > 0.0) {
@@ -123,20 +170,42 @@ struct ConvexTarget {
       Vec3 centre = Vec3::Zero();
       for (int i = 0; i < count; ++i) centre += vertex(index[i]);
       centre /= count;
-      double radius_squared = 0.0;
-      for (int i = 0; i < count; ++i) {
-        radius_squared = std::max(radius_squared, (vertex(index[i]) - centre).squaredNorm());
-      }
-      faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre,
-                                 std::sqrt(radius_squared)});
+      double radius = 0.0;
+      for (int i = 0; i < count; ++i) radius = std::max(radius, safeNorm(vertex(index[i]) - centre));
+      faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre, radius});
+      for (int k = 0; k < 3; ++k) geometry.planes[k].push_back(unit[k]);
+      geometry.planes[3].push_back(faces.back().offset);
       at += count + 1;
     }
     return geometry;
   }
 
+  /// Vertices finite and in range; faces well encoded (at least three in-range
+  /// indices each, exactly filling the face list).
+  static bool listsAreValid(const fcl::Convex<S>& convex) {
+    const auto& vertices = convex.getVertices();
+    if (vertices.empty() || convex.getFaceCount() < 1) return false;
+    for (const auto& v : vertices) {
+      if (!((v.array().abs() <= kMaxDiskLength<S>).all())) return false;
+    }
+    const std::vector<int>& faces = convex.getFaces();
+    std::size_t at = 0;
+    for (int f = 0; f < convex.getFaceCount(); ++f) {
+      if (at >= faces.size()) return false;
+      const int count = faces[at];
+      if (count < 3 || at + 1 + std::size_t(count) > faces.size()) return false;
+      for (int i = 1; i <= count; ++i) {
+        if (faces[at + i] < 0 || std::size_t(faces[at + i]) >= vertices.size()) return false;
+      }
+      at += count + 1;
+    }
+    return true;
+  }
+
   Vec3 vertex(int index) const { return convex->getVertices()[index].template cast<double>(); }
 
   Projection ontoFace(const Vec3& y, const ConvexFace& face) const {
+    if (face.count == 3) return triangles[&face - faces.data()].project(y);
     return projectOntoPolygon(y, face.count, [&](int i) { return vertex(list[face.start + i]); },
                               face.unit_normal);
   }
@@ -146,11 +215,22 @@ struct ConvexTarget {
   /// face whose plane is farthest first (usually the answer: y's foot on it lies
   /// inside it), then the others whose plane distance can still beat the best.
   Projection project(const Vec3& y) const {
+    // Every plane's height of y, in one vectorised pass over the plane arrays.
+    thread_local std::vector<double> heights;
+    const std::size_t face_count = faces.size();
+    heights.resize(face_count);
+    const double* n_x = planes[0].data();
+    const double* n_y = planes[1].data();
+    const double* n_z = planes[2].data();
+    const double* offset = planes[3].data();
+    double* height_of = heights.data();
+    for (std::size_t f = 0; f < face_count; ++f) {
+      height_of[f] = n_x[f] * y.x() + n_y[f] * y.y() + n_z[f] * y.z() - offset[f];
+    }
     int farthest = -1;
     double farthest_height = 0.0;
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      const double height = faces[f].unit_normal.dot(y) - faces[f].offset;
-      if (height > farthest_height) farthest_height = height, farthest = int(f);
+    for (std::size_t f = 0; f < face_count; ++f) {
+      if (height_of[f] > farthest_height) farthest_height = height_of[f], farthest = int(f);
     }
     if (farthest < 0) {
       // Inside every face plane: inside the solid, or on a flat polytope's plane,
@@ -172,9 +252,9 @@ struct ConvexTarget {
     double best_distance = (y - best.q).norm();
     // The farthest plane's distance bounds the polytope's: reached, it is optimal.
     if (best_distance <= farthest_height) return best;
-    for (std::size_t f = 0; f < faces.size(); ++f) {
+    for (std::size_t f = 0; f < face_count; ++f) {
       if (int(f) == farthest) continue;
-      const double height = faces[f].unit_normal.dot(y) - faces[f].offset;
+      const double height = height_of[f];
       if (!(height > 0.0) || !(height < best_distance)) continue;
       const double reach = best_distance + faces[f].radius;
       if (!((y - faces[f].centre).squaredNorm() < reach * reach)) continue;
@@ -209,37 +289,17 @@ struct ConvexTarget {
 
 template <typename S>
 struct ConvexTraits {
-  /// Vertices finite and in range; faces well encoded (at least three in-range
-  /// indices each, exactly filling the face list).
+  /// Vertices finite and in range; faces well encoded (ConvexTarget::listsAreValid),
+  /// decided once per hull and thread with its geometry.
   static bool valid(const fcl::Convex<S>& convex) {
-    const auto& vertices = convex.getVertices();
-    if (vertices.empty() || convex.getFaceCount() < 1) return false;
-    for (const auto& v : vertices) {
-      if (!((v.array().abs() <= kMaxDiskLength<S>).all())) return false;
-    }
-    const std::vector<int>& faces = convex.getFaces();
-    std::size_t at = 0;
-    for (int f = 0; f < convex.getFaceCount(); ++f) {
-      if (at >= faces.size()) return false;
-      const int count = faces[at];
-      if (count < 3 || at + 1 + std::size_t(count) > faces.size()) return false;
-      for (int i = 1; i <= count; ++i) {
-        if (faces[at + i] < 0 || std::size_t(faces[at + i]) >= vertices.size()) return false;
-      }
-      at += count + 1;
-    }
-    return true;
+    return ConvexTarget<S>::geometryOf(convex).valid;
   }
   static double boundingRadius(const fcl::Convex<S>& convex) {
-    double largest = 0.0;
-    for (const auto& v : convex.getVertices()) {
-      largest = std::max(largest, v.template cast<double>().squaredNorm());
-    }
-    return std::sqrt(largest);
+    return ConvexTarget<S>::verifiedGeometryOf(convex).bounding_radius;
   }
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
   static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
-    return ConvexTarget<S>(convex, ConvexTarget<S>::geometryOf(convex));
+    return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
   }
   /// The face normals.
   static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target) {
