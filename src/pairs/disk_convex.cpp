@@ -142,6 +142,7 @@ struct ConvexTarget {
     bool& flat = geometry.flat;
     faces.reserve(shape.getFaceCount());
     geometry.triangles.resize(shape.getFaceCount());
+    for (auto& coordinate : geometry.planes) coordinate.reserve(shape.getFaceCount());
     std::size_t at = 0;
     double largest_area = -1.0;
     Vec3 first_normal = Vec3::Zero();
