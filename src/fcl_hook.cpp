@@ -278,6 +278,17 @@ std::size_t answerDiskShapeCollision(const Disk<S>& disk, const Transform3<S>& X
 template <typename S>
 const internal::DiskNarrowPhase<S> kDiskNarrowPhase{};
 
+/// X_AB from X_WA and X_WB, with the translation taken as a difference first:
+/// R_WA^T (t_WB - t_WA). (X_WA^-1 X_WB adds two world-sized terms instead,
+/// losing an ulp of the distance from the origin: 1e-11 of a unit scene at 1e5.)
+template <typename S>
+Transform3<S> relativePose(const Transform3<S>& X_WA, const Transform3<S>& X_WB) {
+  Transform3<S> X_AB = Transform3<S>::Identity();
+  X_AB.linear() = X_WA.linear().transpose() * X_WB.linear();
+  X_AB.translation() = X_WA.linear().transpose() * (X_WB.translation() - X_WA.translation());
+  return X_AB;
+}
+
 template <int NodeType, typename S>
 struct DiskEnvironment {
   static constexpr bool kAnswered = false;  // not answered by fcl_disk
@@ -331,7 +342,7 @@ struct DiskMeshTraversal {
       if (request.isSatisfied(result)) return result.min_distance;
       const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
       if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES) return result.min_distance;
-      const Transform3<S> X_MD = X_WM.inverse(Eigen::Isometry) * X_WD;
+      const Transform3<S> X_MD = relativePose(X_WM, X_WD);
       fcl::DistanceResult<S> in_mesh_frame;
       MeshFrameDistanceNode node;
       node.request = request;
@@ -389,7 +400,7 @@ struct DiskMeshTraversal {
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_mesh_frame;
     fcl::detail::MeshShapeCollisionTraversalNode<BV, Disk<S>, Narrow> node;
-    const Transform3<S> X_MD = X_WM.inverse(Eigen::Isometry) * X_WD;
+    const Transform3<S> X_MD = relativePose(X_WM, X_WD);
     node.model1 = &model;
     node.tf1.setIdentity();
     node.model2 = &disk;
@@ -428,52 +439,92 @@ FCL_DISK_MESH(BV_KDOP18, fcl::KDOP<S, 18>)
 FCL_DISK_MESH(BV_KDOP24, fcl::KDOP<S, 24>)
 #undef FCL_DISK_MESH
 
+/// An octree: FCL's octree traversal, run in the octree's frame O (the disk
+/// posed there by relativePose, the tree at the identity; FCL's traversal in
+/// the world frame poses every cell in world coordinates, which costs the
+/// rounding of their distance from the origin), the answer mapped to the world
+/// and put in the caller's order (FCL's shape-octree functions report the
+/// octree as o1 whatever the order). With enable_cost FCL's world-frame path
+/// is kept, so that cost sources are FCL's world boxes.
 template <typename S>
 struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
   static constexpr bool kAnswered = true;
   using Narrow = internal::DiskNarrowPhase<S>;
+
   static S distance(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                     const Disk<S>& disk, const Transform3<S>& X_WD,
                     const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
-    return fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, X_WO, &disk, X_WD,
-                                                             &kDiskNarrowPhase<S>, request, result);
+    return distanceInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/false, request, result);
   }
-  /// FCL's shape-octree functions report the octree as o1 (their points, ids
-  /// and normals in octree-shape order) whatever the argument order; with the
-  /// disk as o1 the answer is put in the caller's order, as for every other pair.
   static S distanceDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
                              const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                              const fcl::DistanceRequest<S>& request,
                              fcl::DistanceResult<S>& result) {
-    fcl::DistanceResult<S> octree_first;
-    distance(octree, X_WO, disk, X_WD, request, octree_first);
-    if (octree_first.min_distance < result.min_distance) {
-      result.update(octree_first.min_distance, &disk, octree, fcl::DistanceResult<S>::NONE,
-                    octree_first.b1, octree_first.nearest_points[1],
-                    octree_first.nearest_points[0]);
-    }
-    return result.min_distance;
+    return distanceInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/true, request, result);
   }
   static std::size_t collide(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                              const Disk<S>& disk, const Transform3<S>& X_WD,
                              const fcl::CollisionRequest<S>& request,
                              fcl::CollisionResult<S>& result) {
-    return fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(octree, X_WO, &disk, X_WD,
-                                                            &kDiskNarrowPhase<S>, request, result);
+    return collideInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/false, request, result);
   }
   static std::size_t collideDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
                                       const CollisionGeometry<S>* octree,
                                       const Transform3<S>& X_WO,
                                       const fcl::CollisionRequest<S>& request,
                                       fcl::CollisionResult<S>& result) {
+    return collideInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/true, request, result);
+  }
+
+  static S distanceInOctreeFrame(const Disk<S>& disk, const Transform3<S>& X_WD,
+                                 const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
+                                 bool disk_first, const fcl::DistanceRequest<S>& request,
+                                 fcl::DistanceResult<S>& result) {
+    fcl::DistanceResult<S> in_octree_frame;  // octree as o1, points in O
+    fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, Transform3<S>::Identity(), &disk,
+                                                      relativePose(X_WO, X_WD), &kDiskNarrowPhase<S>,
+                                                      request, in_octree_frame);
+    if (in_octree_frame.min_distance < result.min_distance) {
+      const fcl::Vector3<S> p_cell = X_WO * in_octree_frame.nearest_points[0];
+      const fcl::Vector3<S> p_disk = X_WO * in_octree_frame.nearest_points[1];
+      const auto none = fcl::DistanceResult<S>::NONE;
+      if (disk_first) {
+        result.update(in_octree_frame.min_distance, &disk, octree, none, in_octree_frame.b1,
+                      p_disk, p_cell);
+      } else {
+        result.update(in_octree_frame.min_distance, octree, &disk, in_octree_frame.b1, none,
+                      p_cell, p_disk);
+      }
+    }
+    return result.min_distance;
+  }
+
+  static std::size_t collideInOctreeFrame(const Disk<S>& disk, const Transform3<S>& X_WD,
+                                          const CollisionGeometry<S>* octree,
+                                          const Transform3<S>& X_WO, bool disk_first,
+                                          const fcl::CollisionRequest<S>& request,
+                                          fcl::CollisionResult<S>& result) {
+    const bool with_cost = request.enable_cost;
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
-    fcl::CollisionResult<S> octree_first;
-    collide(octree, X_WO, disk, X_WD, room_left, octree_first);
+    fcl::CollisionResult<S> octree_first;  // octree as o1
+    const Transform3<S> X_OD = relativePose(X_WO, X_WD);
+    fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(
+        octree, with_cost ? X_WO : Transform3<S>::Identity(), &disk, with_cost ? X_WD : X_OD,
+        &kDiskNarrowPhase<S>, room_left, octree_first);
     for (std::size_t i = 0; i < octree_first.numContacts(); ++i) {
-      const fcl::Contact<S>& c = octree_first.getContact(i);
-      result.addContact(fcl::Contact<S>(&disk, octree, fcl::Contact<S>::NONE, c.b1, c.pos,
-                                        -c.normal, c.penetration_depth));
+      fcl::Contact<S> c = octree_first.getContact(i);
+      if (request.enable_contact && !with_cost) {
+        c.pos = X_WO * c.pos;
+        c.normal = X_WO.linear() * c.normal;
+      }
+      if (disk_first) {
+        result.addContact(fcl::Contact<S>(&disk, octree, fcl::Contact<S>::NONE, c.b1, c.pos,
+                                          -c.normal, c.penetration_depth));
+      } else {
+        result.addContact(fcl::Contact<S>(octree, &disk, c.b1, fcl::Contact<S>::NONE, c.pos,
+                                          c.normal, c.penetration_depth));
+      }
     }
     std::vector<fcl::CostSource<S>> costs;
     octree_first.getCostSources(costs);
