@@ -442,10 +442,10 @@ FCL_DISK_MESH(BV_KDOP24, fcl::KDOP<S, 24>)
 /// An octree: FCL's octree traversal, run in the octree's frame O (the disk
 /// posed there by relativePose, the tree at the identity; FCL's traversal in
 /// the world frame poses every cell in world coordinates, which costs the
-/// rounding of their distance from the origin), the answer mapped to the world
-/// and put in the caller's order (FCL's shape-octree functions report the
-/// octree as o1 whatever the order). With enable_cost FCL's world-frame path
-/// is kept, so that cost sources are FCL's world boxes.
+/// rounding of their distance from the origin), the answer mapped to the
+/// world. As FCL's shape-octree functions, the octree is o1 of the answer
+/// whatever the argument order. With enable_cost FCL's world-frame path is
+/// kept, so that cost sources are FCL's world boxes.
 template <typename S>
 struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
   static constexpr bool kAnswered = true;
@@ -454,82 +454,56 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
   static S distance(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                     const Disk<S>& disk, const Transform3<S>& X_WD,
                     const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
-    return distanceInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/false, request, result);
+    fcl::DistanceResult<S> in_octree_frame;
+    fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, Transform3<S>::Identity(), &disk,
+                                                      relativePose(X_WO, X_WD), &kDiskNarrowPhase<S>,
+                                                      request, in_octree_frame);
+    if (in_octree_frame.min_distance < result.min_distance) {
+      result.update(in_octree_frame.min_distance, octree, &disk, in_octree_frame.b1,
+                    fcl::DistanceResult<S>::NONE, X_WO * in_octree_frame.nearest_points[0],
+                    X_WO * in_octree_frame.nearest_points[1]);
+    }
+    return result.min_distance;
   }
   static S distanceDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
                              const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                              const fcl::DistanceRequest<S>& request,
                              fcl::DistanceResult<S>& result) {
-    return distanceInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/true, request, result);
+    return distance(octree, X_WO, disk, X_WD, request, result);
   }
+
   static std::size_t collide(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                              const Disk<S>& disk, const Transform3<S>& X_WD,
                              const fcl::CollisionRequest<S>& request,
                              fcl::CollisionResult<S>& result) {
-    return collideInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/false, request, result);
+    if (request.enable_cost) {
+      return fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(octree, X_WO, &disk, X_WD,
+                                                              &kDiskNarrowPhase<S>, request, result);
+    }
+    if (request.isSatisfied(result)) return result.numContacts();
+    // Not satisfied without enable_cost: room for at least one more contact.
+    fcl::CollisionRequest<S> room_left = request;
+    room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
+    fcl::CollisionResult<S> in_octree_frame;
+    fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(octree, Transform3<S>::Identity(), &disk,
+                                                     relativePose(X_WO, X_WD), &kDiskNarrowPhase<S>,
+                                                     room_left, in_octree_frame);
+    for (std::size_t i = 0; i < in_octree_frame.numContacts(); ++i) {
+      fcl::Contact<S> contact = in_octree_frame.getContact(i);
+      if (request.enable_contact) {
+        contact.pos = X_WO * contact.pos;
+        contact.normal = X_WO.linear() * contact.normal;
+      }
+      result.addContact(contact);
+    }
+    return result.numContacts();
   }
   static std::size_t collideDiskFirst(const Disk<S>& disk, const Transform3<S>& X_WD,
                                       const CollisionGeometry<S>* octree,
                                       const Transform3<S>& X_WO,
                                       const fcl::CollisionRequest<S>& request,
                                       fcl::CollisionResult<S>& result) {
-    return collideInOctreeFrame(disk, X_WD, octree, X_WO, /*disk_first=*/true, request, result);
-  }
-
-  static S distanceInOctreeFrame(const Disk<S>& disk, const Transform3<S>& X_WD,
-                                 const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
-                                 bool disk_first, const fcl::DistanceRequest<S>& request,
-                                 fcl::DistanceResult<S>& result) {
-    fcl::DistanceResult<S> in_octree_frame;  // octree as o1, points in O
-    fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, Transform3<S>::Identity(), &disk,
-                                                      relativePose(X_WO, X_WD), &kDiskNarrowPhase<S>,
-                                                      request, in_octree_frame);
-    if (in_octree_frame.min_distance < result.min_distance) {
-      const fcl::Vector3<S> p_cell = X_WO * in_octree_frame.nearest_points[0];
-      const fcl::Vector3<S> p_disk = X_WO * in_octree_frame.nearest_points[1];
-      const auto none = fcl::DistanceResult<S>::NONE;
-      if (disk_first) {
-        result.update(in_octree_frame.min_distance, &disk, octree, none, in_octree_frame.b1,
-                      p_disk, p_cell);
-      } else {
-        result.update(in_octree_frame.min_distance, octree, &disk, in_octree_frame.b1, none,
-                      p_cell, p_disk);
-      }
-    }
-    return result.min_distance;
-  }
-
-  static std::size_t collideInOctreeFrame(const Disk<S>& disk, const Transform3<S>& X_WD,
-                                          const CollisionGeometry<S>* octree,
-                                          const Transform3<S>& X_WO, bool disk_first,
-                                          const fcl::CollisionRequest<S>& request,
-                                          fcl::CollisionResult<S>& result) {
-    const bool with_cost = request.enable_cost;
-    fcl::CollisionRequest<S> room_left = request;
-    room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
-    fcl::CollisionResult<S> octree_first;  // octree as o1
-    const Transform3<S> X_OD = relativePose(X_WO, X_WD);
-    fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(
-        octree, with_cost ? X_WO : Transform3<S>::Identity(), &disk, with_cost ? X_WD : X_OD,
-        &kDiskNarrowPhase<S>, room_left, octree_first);
-    for (std::size_t i = 0; i < octree_first.numContacts(); ++i) {
-      fcl::Contact<S> c = octree_first.getContact(i);
-      if (request.enable_contact && !with_cost) {
-        c.pos = X_WO * c.pos;
-        c.normal = X_WO.linear() * c.normal;
-      }
-      if (disk_first) {
-        result.addContact(fcl::Contact<S>(&disk, octree, fcl::Contact<S>::NONE, c.b1, c.pos,
-                                          -c.normal, c.penetration_depth));
-      } else {
-        result.addContact(fcl::Contact<S>(octree, &disk, c.b1, fcl::Contact<S>::NONE, c.pos,
-                                          c.normal, c.penetration_depth));
-      }
-    }
-    std::vector<fcl::CostSource<S>> costs;
-    octree_first.getCostSources(costs);
-    for (const auto& cost : costs) result.addCostSource(cost, request.num_max_cost_sources);
-    return result.numContacts();
+    return collide(octree, X_WO, disk, X_WD, request, result);
   }
 };
 

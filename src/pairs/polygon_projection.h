@@ -134,9 +134,16 @@ struct TriangleProjection {
     }
     const double area = va + vb + vc;  // |normal|^2, scaled
     if (!(area > 0.0)) {
-      return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, unit_normal);
+      // No area to rounding: the union of the edges (a sliver's unit normal,
+      // known only to eps / sine, would put a face foot off the triangle).
+      return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, Vec3::Zero());
     }
     const double v = vb / area, w = vc / area;
+    // A sliver's barycentric coordinates carry its plane's error (1 / sine):
+    // out of range, their point lies off the triangle; its edges decide.
+    if (sliver && !(v >= 0.0 && w >= 0.0 && v + w <= 1.0)) {
+      return projectOntoPolygon(x, 3, [this](int i) { return vertices[i]; }, Vec3::Zero());
+    }
     return Projection{a + v * ab_raw + w * ac_raw,
                       FactoredHessian::diagonalOf(Vec3::Zero()).add(1.0, unit_normal)};
   }
