@@ -23,7 +23,8 @@ SECONDS_PER_TARGET="${FCL_DISK_FUZZ_SECONDS:-60}"
 # per run, for longer campaigns hunting new inputs.
 SEED="${FCL_DISK_FUZZ_SEED:-1}"
 BUILD=build-fuzz
-TARGETS=(fuzz_exact_distance fuzz_almohamad_selim fuzz_disk_intersection fuzz_hook fuzz_disk_shapes)
+TARGETS=(fuzz_exact_distance fuzz_almohamad_selim fuzz_disk_intersection fuzz_hook fuzz_disk_shapes
+         fuzz_disk_environment)
 if [ "$#" -gt 0 ]; then TARGETS=("$@"); fi
 # The decoder's longest input is 224 bytes (raw mode, every field a raw double,
 # one injected value, one perturbed rotation, fuzz_hook's option byte); longer

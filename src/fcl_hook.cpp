@@ -15,7 +15,9 @@
 #include <dlfcn.h>
 #include <link.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <iostream>
@@ -311,12 +313,25 @@ struct DiskMeshTraversal {
                                     std::is_same<BV, fcl::kIOS<S>>::value ||
                                     std::is_same<BV, fcl::OBBRSS<S>>::value;
 
+  /// The distance between two boxes, in double: FCL's AABB::distance squares
+  /// the gaps in S, which in float overflows for gaps beyond 1e19 and then
+  /// prunes every node.
+  static S boxDistance(const fcl::AABB<S>& a, const fcl::AABB<S>& b) {
+    double squared = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      const double gap = std::max({double(a.min_[i]) - double(b.max_[i]),
+                                   double(b.min_[i]) - double(a.max_[i]), 0.0});
+      squared += gap * gap;
+    }
+    return S(std::sqrt(squared));
+  }
+
   struct MeshFrameDistanceNode
       : fcl::detail::MeshShapeDistanceTraversalNode<BV, Disk<S>, Narrow> {
     fcl::AABB<S> disk_box_M;
     S BVTesting(int b1, int) const override {
       if (this->enable_statistics) this->num_bv_tests++;
-      return axisAlignedBoxOf(this->model1->getBV(b1).bv).distance(disk_box_M);
+      return boxDistance(axisAlignedBoxOf(this->model1->getBV(b1).bv), disk_box_M);
     }
   };
 
@@ -355,7 +370,7 @@ struct DiskMeshTraversal {
       node.vertices = model.vertices;
       node.tri_indices = model.tri_indices;
       fcl::computeBV(disk, X_MD, node.model2_bv);
-      node.disk_box_M = diskWorldAABB(disk.radius, X_MD);
+      fcl::computeBV(disk, X_MD, node.disk_box_M);
       fcl::detail::distance(&node);
       if (in_mesh_frame.min_distance < result.min_distance) {
         result.update(in_mesh_frame.min_distance, mesh, &disk, in_mesh_frame.b1,

@@ -20,6 +20,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <array>
@@ -94,8 +95,23 @@ inline Real pointToSegment(const V3& p, const V3& a, const V3& b) {
   return (p - (a + t * ab)).norm();
 }
 
-/// Distance from p to the closed convex polygon (vertices in order, planar).
+/// Distance from p to the closed convex polygon (vertices in order, planar). A
+/// triangle by least squares on its edges (QR, backward stable): inside (both
+/// barycentric coordinates >= 0, sum <= 1) the residual is the distance, else
+/// its nearest edge; a plane test would need the normal, known only to eps /
+/// sine for a sliver of sine 1e-13 (1e-6 of its size in long double).
 inline Real pointToPolygon(const V3& p, const std::vector<V3>& polygon) {
+  if (polygon.size() == 3) {
+    Eigen::Matrix<Real, 3, 2> edges;
+    edges.col(0) = polygon[1] - polygon[0];
+    edges.col(1) = polygon[2] - polygon[0];
+    const Eigen::Matrix<Real, 2, 1> vw = edges.colPivHouseholderQr().solve(p - polygon[0]);
+    if (vw.allFinite() && vw[0] >= 0 && vw[1] >= 0 && vw[0] + vw[1] <= 1) {
+      return (edges * vw - (p - polygon[0])).norm();
+    }
+    return std::min({pointToSegment(p, polygon[0], polygon[1]), pointToSegment(p, polygon[1], polygon[2]),
+                     pointToSegment(p, polygon[2], polygon[0])});
+  }
   V3 normal = V3::Zero();
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     normal += polygon[i].cross(polygon[(i + 1) % polygon.size()]);

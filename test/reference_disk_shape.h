@@ -931,7 +931,7 @@ Result referenceDistance(const Disk& disk, const Shape& shape) {
     goldenMinimum(-d.r, d.r, [&](Real a) { return inner(a, &b_scratch); }, &a_arg);
     inner(a_arg, &b_arg);
     const V3 p = d.at(a_arg, b_arg);
-    V3 q;
+    V3 q = V3::Zero();
     const Real dist = m.distance(p, &q);
     consider(dist, p, q, "golden");
   }

@@ -16,10 +16,13 @@
 //             in the plane, and flat;
 //   KDOP<N>   the smallest k-DOP: along each of FCL's N/2 directions d, the
 //             disk's support c.d -+ r |(u.d, v.d)|.
-// Each contains the disk exactly, padded outward by kDiskBvPadUlps relative
-// (the rounding of the products above), so rounding never leaves a disk point
-// outside. Frame: the `tf` passed to computeBV (the world frame, or the mesh's
-// frame when FCL's oriented traversals pose the disk relative to a mesh).
+// Each contains the disk, padded outward by kDiskBvPadUlps relative (the
+// rounding of the products above), so rounding never leaves a disk point
+// outside, and thickened by kDiskBvTouchingPad of r + |c| on every side: the
+// solvers count pairs closer than 1e-13 of their scene as touching
+// (disk_shape_distance.h), and a volume test that rounding puts a hair apart
+// must not prune such a pair before the leaf says it touches. Frame: the `tf`
+// passed to computeBV (the world, or the mesh's or octree's frame).
 #pragma once
 
 #include <fcl/geometry/shape/utility.h>
@@ -31,6 +34,7 @@
 #include <fcl/math/bv/kIOS.h>
 #include <fcl_disk/disk_aabb.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -49,11 +53,24 @@ fcl::AABB<S> diskWorldAABB(S radius, const fcl::Transform3<S>& X_WD);
 /// kDiskAabbExtentPadUlps.
 inline constexpr int kDiskBvPadUlps = 4;
 
+/// Thickening of every bounding volume, relative to r + |c| (c the centre in
+/// the frame of the volume): ten times the solvers' touching tolerance (1e-13
+/// of the scene), which the scene's size r + |c| bounds for a disk against a
+/// piece near it in that frame.
+inline constexpr double kDiskBvTouchingPad = 1e-12;
+
 namespace detail {
 
 template <typename S>
 constexpr S diskBvPad() {
   return 1 + kDiskBvPadUlps * std::numeric_limits<S>::epsilon();
+}
+
+/// The thickening kDiskBvTouchingPad (r + |c|), at least the rounding of S.
+template <typename S>
+S diskBvThickness(S radius, const fcl::Transform3<S>& tf) {
+  return std::max(S(kDiskBvTouchingPad), 4 * std::numeric_limits<S>::epsilon()) *
+         (radius + tf.translation().norm());
 }
 
 /// The flat square c + [-r, r] u + [-r, r] v as an OBB.
@@ -62,8 +79,9 @@ fcl::OBB<S> diskSquareObb(S radius, const fcl::Transform3<S>& tf) {
   fcl::OBB<S> obb;
   obb.axis = tf.linear();
   obb.To = tf.translation();
-  const S half = diskBvPad<S>() * radius;
-  obb.extent << half, half, S(0);
+  const S thickness = diskBvThickness(radius, tf);
+  const S half = diskBvPad<S>() * radius + thickness;
+  obb.extent << half, half, thickness;
   return obb;
 }
 
@@ -74,7 +92,7 @@ fcl::RSS<S> diskSquareRss(S radius, const fcl::Transform3<S>& tf) {
   fcl::RSS<S> rss;
   rss.axis = tf.linear();
   rss.l[0] = rss.l[1] = 2 * diskBvPad<S>() * radius;
-  rss.r = S(0);
+  rss.r = diskBvThickness(radius, tf);
   rss.setToFromCenter(tf.translation());
   return rss;
 }
@@ -89,6 +107,9 @@ template <typename S>
 struct ComputeBVImpl<S, AABB<S>, fcl_disk::Disk<S>> {
   static void run(const fcl_disk::Disk<S>& disk, const Transform3<S>& tf, AABB<S>& bv) {
     bv = fcl_disk::diskWorldAABB(disk.radius, tf);
+    const S thickness = fcl_disk::detail::diskBvThickness(disk.radius, tf);
+    bv.min_ -= Vector3<S>::Constant(thickness);
+    bv.max_ += Vector3<S>::Constant(thickness);
   }
 };
 
@@ -119,7 +140,8 @@ struct ComputeBVImpl<S, kIOS<S>, fcl_disk::Disk<S>> {
   static void run(const fcl_disk::Disk<S>& disk, const Transform3<S>& tf, kIOS<S>& bv) {
     bv.num_spheres = 1;
     bv.spheres[0].o = tf.translation();
-    bv.spheres[0].r = fcl_disk::detail::diskBvPad<S>() * disk.radius;
+    bv.spheres[0].r = fcl_disk::detail::diskBvPad<S>() * disk.radius +
+                      fcl_disk::detail::diskBvThickness(disk.radius, tf);
     bv.obb = fcl_disk::detail::diskSquareObb(disk.radius, tf);
   }
 };
@@ -134,10 +156,12 @@ struct ComputeBVImpl<S, KDOP<S, N>, fcl_disk::Disk<S>> {
     const Vector3<S> u = tf.linear().col(0), v = tf.linear().col(1);
     const Vector3<S>& c = tf.translation();
     constexpr S kInfinity = std::numeric_limits<S>::infinity();
+    const S thickness = fcl_disk::detail::diskBvThickness(disk.radius, tf);
     for (std::size_t k = 0; k < N / 2; ++k) {
       const Vector3<S> d(along_x.dist(k), along_y.dist(k), along_z.dist(k));
       const S centre = c.dot(d);
-      const S extent = fcl_disk::detail::diskBvPad<S>() * disk.radius * std::hypot(u.dot(d), v.dot(d));
+      const S extent = fcl_disk::detail::diskBvPad<S>() * disk.radius * std::hypot(u.dot(d), v.dot(d)) +
+                       thickness * d.norm();
       bv.dist(k) = std::nextafter(centre - extent, -kInfinity);
       bv.dist(k + N / 2) = std::nextafter(centre + extent, kInfinity);
     }

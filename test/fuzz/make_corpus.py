@@ -6,7 +6,9 @@ Every seed is built field by field in the byte layout that fuzz_input.h decodes
 touching, coplanar, coaxial, nearly parallel down to 1e-12 rad, one disk at the
 other's rim, far from the origin (1e9), tiny and huge radii, and raw IEEE
 patterns (NaN, inf, denormals, non-orthonormal rotations). fuzz_hook's seeds
-carry one more byte, the target's option byte.
+carry one more byte, the target's option byte. fuzz_disk_environment has its own
+layout (a geometry byte, a flags byte, then fractions): its seeds are every
+geometry kind under each flag combination with fixed pseudo-random fractions.
 
     python3 test/fuzz/make_corpus.py      # rewrites the seed-* files, deterministic
 """
@@ -209,7 +211,25 @@ def seeds():
     return out
 
 
+def environment_seeds():
+    """fuzz_disk_environment: kinds 0-7 (mesh BV types) and 8 (octree), flags
+    for float, disk first, indep solver and raw mode, 200 fixed random bytes."""
+    out = {}
+    for kind in range(9):
+        for flags in (0x00, 0x01, 0x02, 0x04, 0x07, 0x70, 0x73):
+            rng = random.Random(kind * 256 + flags)
+            body = bytes(rng.randrange(256) for _ in range(200))
+            out[f"kind{kind}-flags{flags:02x}"] = u8(kind) + u8(flags) + body
+    return out
+
+
 def main():
+    directory = CORPUS / "fuzz_disk_environment"
+    directory.mkdir(parents=True, exist_ok=True)
+    for old in directory.glob("seed-*"):
+        old.unlink()
+    for name, data in sorted(environment_seeds().items()):
+        (directory / f"seed-{name}").write_bytes(data)
     all_seeds = seeds()
     for target in TARGETS:
         directory = CORPUS / target
