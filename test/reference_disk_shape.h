@@ -585,7 +585,7 @@ struct Polygon {
     }
     Real best = kInf;
     for (size_t i = 0; i < k; ++i) {
-      V3 near;
+      V3 near = V3::Zero();
       const Real d = pointSegment(x, v[i], v[(i + 1) % k], &near);
       if (d < best) {
         best = d;
@@ -652,7 +652,7 @@ struct ConvexModel : ModelBase {
     Real best = kInf;
     if (faces.empty()) {  // a hull without area: its edges
       for (const auto& e : edge_list) {
-        V3 near;
+        V3 near = V3::Zero();
         const Real d = pointSegment(x, e.first, e.second, &near);
         if (d < best) {
           best = d;
@@ -669,7 +669,7 @@ struct ConvexModel : ModelBase {
       if (s <= 0) continue;
       inside = false;
       if (s >= best) continue;
-      V3 near;
+      V3 near = V3::Zero();
       const Real d = f.distance(x, s, &near);
       if (d < best) {
         best = d;
@@ -714,7 +714,7 @@ struct TriangleModel : ModelBase {
     if (has_area) return tri.distance(x, tri.m.dot(x) - tri.off, y);
     Real best = kInf;
     for (int i = 0; i < 3; ++i) {
-      V3 near;
+      V3 near = V3::Zero();
       const Real d = pointSegment(x, tri.v[i], tri.v[(i + 1) % 3], &near);
       if (d < best) {
         best = d;
