@@ -15,6 +15,7 @@ PACKAGES=(
   libfcl-dev
   libccd-dev
   libeigen3-dev
+  liboctomap-dev   # fcl::OcTree in the tests, fuzz target and benchmarks (libfcl-dev pulls it too)
   libgtest-dev
   libbenchmark-dev
   python3-matplotlib
