@@ -455,14 +455,19 @@ TEST(DiskShapeCases, UncertainShapesGiveCostSourcesAsFcl) {
   disk->cost_density = 0.5;
   box->cost_density = 0.5;
   fcl::CollisionRequestd request(1, false, 4, /*enable_cost=*/true);
+  // Either argument order: with the disk second no contact is built, so none
+  // is flipped.
   const auto collide = [&](const Transform3d& X_WB) {
     fcl::CollisionObjectd a(disk, kIdentity), b(box, X_WB);
-    fcl::CollisionResultd result;
-    fcl::collide(&a, &b, request, result);
-    std::vector<fcl::CostSourced> costs;
-    result.getCostSources(costs);
-    EXPECT_EQ(result.numContacts(), 0u);
-    return costs;
+    std::vector<fcl::CostSourced> costs[2];
+    for (const bool disk_first : {true, false}) {
+      fcl::CollisionResultd result;
+      fcl::collide(disk_first ? &a : &b, disk_first ? &b : &a, request, result);
+      result.getCostSources(costs[disk_first]);
+      EXPECT_EQ(result.numContacts(), 0u);
+    }
+    EXPECT_EQ(costs[0].size(), costs[1].size());
+    return costs[1];
   };
   const auto overlapping = collide(at({0.2, 0, 0.3}));
   ASSERT_EQ(overlapping.size(), 1u);
