@@ -335,6 +335,10 @@ struct DiskMeshTraversal {
     }
   };
 
+  static bool isTriangleModel(const CollisionGeometry<S>* mesh) {
+    return static_cast<const fcl::BVHModel<BV>*>(mesh)->getModelType() == fcl::BVH_MODEL_TRIANGLES;
+  }
+
   static fcl::AABB<S> axisAlignedBoxOf(const fcl::AABB<S>& box) { return box; }
   static fcl::AABB<S> axisAlignedBoxOf(const fcl::OBB<S>& obb) {
     const fcl::Vector3<S> half = obb.axis.cwiseAbs() * obb.extent;
@@ -350,13 +354,15 @@ struct DiskMeshTraversal {
   static S distance(const CollisionGeometry<S>* mesh, const Transform3<S>& X_WM,
                     const Disk<S>& disk, const Transform3<S>& X_WD,
                     const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
+    // A point cloud has no triangles to answer with: no answer (FCL's oriented
+    // traversals would run on a node they left uninitialised and crash).
+    if (!isTriangleModel(mesh)) return result.min_distance;
     if constexpr (kOriented) {
       return fcl::detail::BVHShapeDistancer<BV, Disk<S>, Narrow>::distance(
           mesh, X_WM, &disk, X_WD, &kDiskNarrowPhase<S>, request, result);
     } else {
       if (request.isSatisfied(result)) return result.min_distance;
       const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
-      if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES) return result.min_distance;
       const Transform3<S> X_MD = relativePose(X_WM, X_WD);
       fcl::DistanceResult<S> in_mesh_frame;
       MeshFrameDistanceNode node;
@@ -395,6 +401,7 @@ struct DiskMeshTraversal {
                              const Disk<S>& disk, const Transform3<S>& X_WD,
                              const fcl::CollisionRequest<S>& request,
                              fcl::CollisionResult<S>& result) {
+    if (!isTriangleModel(mesh)) return result.numContacts();  // as distance()
     if constexpr (kCollidesOnWorldCopy) {
       if (!request.enable_cost) return collideInMeshFrame(mesh, X_WM, disk, X_WD, request, result);
     }
@@ -409,7 +416,6 @@ struct DiskMeshTraversal {
                                         fcl::CollisionResult<S>& result) {
     if (request.isSatisfied(result)) return result.numContacts();
     const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
-    if (model.getModelType() != fcl::BVH_MODEL_TRIANGLES) return result.numContacts();
     // Not satisfied without enable_cost: room for at least one more contact.
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();

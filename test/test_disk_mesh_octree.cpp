@@ -1161,3 +1161,40 @@ TYPED_TEST(DiskEnvironment, NaNPoseGivesNaNDistanceAndNoContact) {
 }
 
 }  // namespace
+
+// A BVHModel built from points only (BVH_MODEL_POINTCLOUD) has no triangles:
+// no answer, as FCL means it (the result untouched, no contact), and no crash,
+// for every BV type and either order (FCL's oriented traversals would run on a
+// node their initialize() left unset).
+TEST(DiskEnvironment, PointCloudModelsGetNoAnswer) {
+  const auto check = [](auto mesh, const char* name) {
+    const std::vector<fcl::Vector3d> points = {fcl::Vector3d(0, 0, 0), fcl::Vector3d(1, 0, 0),
+                                               fcl::Vector3d(0, 1, 0)};
+    mesh->beginModel();
+    mesh->addSubModel(points);
+    mesh->endModel();
+    ASSERT_EQ(mesh->getModelType(), fcl::BVH_MODEL_POINTCLOUD) << name;
+    auto disk = std::make_shared<fcl_disk::Diskd>(0.3);
+    fcl::Transform3d X_WD = fcl::Transform3d::Identity();
+    X_WD.translation() << 0.2, 0.2, 0.0;  // through the points' plane
+    fcl::CollisionObjectd disk_object(disk, X_WD), cloud(mesh);
+    for (const bool disk_first : {true, false}) {
+      fcl::CollisionObjectd* o1 = disk_first ? &disk_object : &cloud;
+      fcl::CollisionObjectd* o2 = disk_first ? &cloud : &disk_object;
+      fcl::DistanceResultd distance;
+      fcl::distance(o1, o2, fcl::DistanceRequestd(), distance);
+      EXPECT_EQ(distance.min_distance, std::numeric_limits<double>::max()) << name;
+      fcl::CollisionResultd contacts;
+      fcl::collide(o1, o2, fcl::CollisionRequestd(10, true), contacts);
+      EXPECT_EQ(contacts.numContacts(), 0u) << name;
+    }
+  };
+  check(std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>(), "OBBRSS");
+  check(std::make_shared<fcl::BVHModel<fcl::RSS<double>>>(), "RSS");
+  check(std::make_shared<fcl::BVHModel<fcl::kIOS<double>>>(), "kIOS");
+  check(std::make_shared<fcl::BVHModel<fcl::OBB<double>>>(), "OBB");
+  check(std::make_shared<fcl::BVHModel<fcl::AABB<double>>>(), "AABB");
+  check(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 16>>>(), "KDOP16");
+  check(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 18>>>(), "KDOP18");
+  check(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 24>>>(), "KDOP24");
+}
