@@ -38,6 +38,7 @@
 #include "fcl_disk/almohamad_selim.h"
 #include "fcl_disk/disk.h"
 #include "fcl_disk/disk_intersection.h"
+#include "fcl_disk/disk_penetration.h"
 #include "fcl_disk/disk_shape_distance.h"
 #include "fcl_disk/exact_distance.h"
 #include "fcl_disk/fcl_templates.h"
@@ -130,7 +131,8 @@ void keepIfNearer(fcl::DistanceResult<S>& result, S distance, const CollisionGeo
 
 template <typename S>
 S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk<S>& disk2,
-                     const Transform3<S>& X_W2, fcl::DistanceResult<S>& result) {
+                     const Transform3<S>& X_W2, const fcl::DistanceRequest<S>& request,
+                     fcl::DistanceResult<S>& result) {
   // Same early exit as FCL's ShapeShapeDistance.
   if (distanceIsSettled(result)) return result.min_distance;
   ++t_disk_answers;
@@ -139,8 +141,19 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
           ? almohamadSelimDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2)
           : exactDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2);
   if (std::isnan(answer.distance)) return answerNoDistance<S>(&disk1, &disk2, result);
-  // Overlap: distance 0 with a common point as both nearest points, for signed and
-  // unsigned requests alike (a zero-thickness disk has no interior to penetrate).
+  if (request.enable_signed_distance && !(answer.distance > 0) &&
+      intersectDisks(disk1.radius, X_W1, disk2.radius, X_W2)) {
+    // Overlap, signed: minus the penetration depth, with the deepest points
+    // (p_W1 - p_W2 = PD * direction), as FCL's EPA reports them. Decided by
+    // intersectDisks, as collide() is: FCL's entry, for the indep solver,
+    // re-asks collide() for a contact whenever the answer is negative.
+    const DiskSignedDistanceResult<S> penetration =
+        diskPenetration(disk1.radius, X_W1, disk2.radius, X_W2);
+    keepIfNearer(result, penetration.signed_distance, &disk1, &disk2, penetration.p_W1,
+                 penetration.p_W2);
+    return result.min_distance;
+  }
+  // Overlap, unsigned: distance 0 with a common point as both nearest points.
   keepIfNearer(result, answer.distance, &disk1, &disk2, answer.p_W1, answer.p_W2);
   return result.min_distance;  // as FCL's ShapeShapeDistance: the result's minimum
 }
@@ -640,7 +653,7 @@ struct DistanceSlot {
                 const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
     const Disk<S>* disk1 = Row == fcl::GEOM_CYLINDER ? asDisk(o1) : nullptr;
     const Disk<S>* disk2 = Col == fcl::GEOM_CYLINDER ? asDisk(o2) : nullptr;
-    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, result);
+    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, request, result);
     if constexpr (Row == fcl::GEOM_CYLINDER && kHasDiskPair<Col, S>) {
       if (disk1) {
         return answerDiskShapeDistance(*disk1, tf1, static_cast<const PairShape<Col, S>&>(*o2),
@@ -771,15 +784,13 @@ struct TableWrappers {
 //     answers are those of the tables, bit for bit.
 
 /// Whether FCL's distance entry, for a pair with a Disk, only calls the slot. It
-/// does more for the indep solver on a signed request whose result is already
-/// negative (it recomputes a penetration depth with collide()), and for a
-/// solver type it does not know (it returns -1).
+/// does more for the indep solver on a signed request whose answer is negative
+/// (it recomputes the depth with collide() and reports the contact point as
+/// both nearest points), and for a solver type it does not know (it returns -1).
 template <typename S>
-bool distanceEntryOnlyCallsSlot(const fcl::DistanceRequest<S>& request,
-                                const fcl::DistanceResult<S>& result) {
+bool distanceEntryOnlyCallsSlot(const fcl::DistanceRequest<S>& request) {
   if (request.gjk_solver_type == fcl::GST_LIBCCD) return true;
-  return request.gjk_solver_type == fcl::GST_INDEP &&
-         !(request.enable_signed_distance && result.min_distance < 0);
+  return request.gjk_solver_type == fcl::GST_INDEP && !request.enable_signed_distance;
 }
 
 /// Whether FCL's collision entry, for a pair with a Disk, only calls the slot. It
@@ -824,10 +835,10 @@ S distanceOfObjects(const fcl::CollisionObject<S>* o1, const fcl::CollisionObjec
   const CollisionGeometry<S>* g2 = o2->collisionGeometry().get();
   const Disk<S>* disk1 = asDiskOfThisLibrary(g1);
   const Disk<S>* disk2 = asDiskOfThisLibrary(g2);
-  if ((disk1 || disk2) && distanceEntryOnlyCallsSlot(request, result)) {
+  if ((disk1 || disk2) && distanceEntryOnlyCallsSlot(request)) {
     const Transform3<S>& tf1 = o1->getTransform();
     const Transform3<S>& tf2 = o2->getTransform();
-    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, result);
+    if (disk1 && disk2) return answerDiskDistance(*disk1, tf1, *disk2, tf2, request, result);
     S distance = 0;
     const bool answered =
         disk1 ? withDiskPairShape(g2, [&](const auto& shape) {

@@ -126,9 +126,11 @@ TEST(Hook, DiskPairsAreAnsweredBySelectedMethodAndRestored) {
 // Overlap: distance 0 with a common point as both nearest points, for unsigned
 // and signed requests and both solvers (the indep signed path would otherwise
 // call collide() and assert on a penetration depth).
-TEST(Hook, OverlapGivesZeroAndACommonPoint) {
+TEST(Hook, OverlapGivesZeroUnsignedAndMinusTheDepthSigned) {
   auto d1 = std::make_shared<fcl_disk::Diskd>(1.0);
   auto d2 = std::make_shared<fcl_disk::Diskd>(1.0);
+  // Disk 2 stands in the plane x = 0.5 through disk 1: the shortest way out is
+  // +x by 0.5, until it touches disk 1's rim at (1, 0, 0).
   fcl::CollisionObjectd a(d1, pose(Vec3::Zero(), Vec3::UnitZ()));
   fcl::CollisionObjectd b(d2, pose(Vec3(0.5, 0, 0), Vec3::UnitX()));
   for (bool is_signed : {false, true}) {
@@ -137,10 +139,18 @@ TEST(Hook, OverlapGivesZeroAndACommonPoint) {
       request.enable_signed_distance = is_signed;
       request.gjk_solver_type = solver;
       fcl::DistanceResultd result;
-      EXPECT_EQ(fcl::distance(&a, &b, request, result), 0.0);
-      EXPECT_EQ(result.min_distance, 0.0);
+      const double expected = is_signed ? -0.5 : 0.0;
+      EXPECT_NEAR(fcl::distance(&a, &b, request, result), expected, 1e-15);
+      EXPECT_NEAR(result.min_distance, expected, 1e-15);
+      if (is_signed && solver == fcl::GST_LIBCCD) {
+        // The deepest points, as FCL's EPA reports them: p1 - p2 = PD * (+x).
+        EXPECT_NEAR((result.nearest_points[0] - Vec3(1, 0, 0)).norm(), 0.0, 1e-15);
+        EXPECT_NEAR((result.nearest_points[1] - Vec3(0.5, 0, 0)).norm(), 0.0, 1e-15);
+        continue;
+      }
+      // Unsigned, and signed with the indep solver (FCL's entry then reports the
+      // contact point of collide() as both points): a point on both disks.
       EXPECT_EQ(result.nearest_points[0], result.nearest_points[1]);
-      // The point lies on both disks: z = 0 (disk 1) and x = 0.5 (disk 2).
       EXPECT_NEAR(result.nearest_points[0].z(), 0.0, 1e-15);
       EXPECT_NEAR(result.nearest_points[0].x(), 0.5, 1e-15);
     }

@@ -639,8 +639,7 @@ TYPED_TEST(DiskSolverProperties, IntersectionAgreesWithExactSolverAndItsContactS
     if (!(std::isfinite(depth) && normal.norm() > 0)) return;
 
     // Convention (disk_intersection.h): translating disk 2 by depth * normal
-    // takes it off the other disk's plane, which separates the disks (an upper
-    // bound on the penetration depth, not a touching translation). One step
+    // (the exact penetration) separates the disks to touching. One step
     // further they are apart, and no further apart than the translation itself
     // (they shared a point, and the distance is 1-Lipschitz in translations).
     const double step = E::kSeparationStepRelative * scale;

@@ -8,15 +8,13 @@ namespace fcl_disk {
 /// Contact between two intersecting disks, in the world frame, following FCL's
 /// convention for fcl::Contact: `normal` points from disk 1 towards disk 2 and
 /// translating disk 2 by penetration_depth * normal (or disk 1 by the opposite)
-/// separates them: it takes one disk off the other's plane, after which they
-/// touch only if the contact is over the other disk's face.
+/// separates them (to touching).
 ///
-/// Zero-thickness disks have no interior, so the depth is a separating
-/// translation, not an overlap of volumes: the shorter of (a) moving disk 2
-/// along +-n1 until it lies on one side of disk 1's plane and (b) moving disk 1
-/// along +-n2 until it lies on one side of disk 2's plane. It is an upper bound on
-/// the true penetration depth; it is 0 when the disks merely touch, and for
-/// coplanar overlapping disks (normal n1 then, a tie-break).
+/// penetration_depth is the exact penetration depth PD, the length of the
+/// shortest separating translation, and normal its direction: diskPenetration()
+/// (docs/penetration_depth.md). It is 0 when the disks merely touch, and for
+/// coplanar overlapping disks (a shift along the common normal separates
+/// them; normal n1 then, a tie-break).
 template <typename S>
 struct DiskContact {
   fcl::Vector3<S> pos{fcl::Vector3<S>::Zero()};     ///< a point on both disks (see below).

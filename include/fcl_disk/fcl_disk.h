@@ -7,6 +7,7 @@
 #include <fcl_disk/disk_bv.h>
 #include <fcl_disk/disk_intersection.h>
 #include <fcl_disk/disk_pair.h>
+#include <fcl_disk/disk_penetration.h>
 #include <fcl_disk/disk_shape_distance.h>
 #include <fcl_disk/exact_distance.h>
 #include <fcl_disk/fcl_templates.h>

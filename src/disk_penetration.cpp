@@ -1,0 +1,474 @@
+// Signed distance and exact penetration depth of two disks. Derivation and
+// notation (F, Q, rho, L, K, the charts): docs/penetration_depth.md.
+#include "fcl_disk/disk_penetration.h"
+
+#include <array>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+#include "fcl_disk/exact_distance.h"
+#include "pair_in_frame1.h"
+
+namespace fcl_disk {
+namespace {
+
+using internal::PairInFrame1;
+using internal::Vec2;
+using internal::Vec3;
+
+/// Q's degree as a trigonometric polynomial, and the degree of the algebraic
+/// polynomial it becomes on a chart (t = tan(theta / 2)).
+constexpr int kTrigDegree = 4;
+constexpr int kPolyDegree = 2 * kTrigDegree;
+/// Samples that determine a trigonometric polynomial of degree 4.
+constexpr int kSamples = 2 * kTrigDegree + 1;
+constexpr double kPi = 3.141592653589793;
+
+/// A rim point of disk 2 closer than this (in scene sizes) to disk 1's axis has
+/// no well-defined nearest point on rim 1; its partners are found from the
+/// tangent condition instead. Above it the radial direction of a is known to
+/// at least 1e-10 relative, far inside what the candidate needs.
+constexpr double kOnAxisTolerance = 1e-6;
+
+/// Two rim points closer than this (scene sizes) give no direction b - a; the
+/// candidates are then the normals +-t1 x t2 of both tangents.
+constexpr double kCoincidentRimPoints = 1e-9;
+
+/// The witness of a disk is its support point along +-w unless |P w| is below
+/// this (w within ~1e-9 rad of the disk's normal: the support point is then a
+/// face point, fixed by the other disk's witness).
+constexpr double kAlongNormal = 1e-9;
+
+/// Root polishing stops at a Newton step (or bracket) this small in t (t lies
+/// in [-1, 1]): Newton converges quadratically, so the root is then known far
+/// beyond double resolution for a simple root, and F, stationary there, moves
+/// by ~1e-24; or after kMaxRootIterations steps (bisection alone needs ~40).
+constexpr double kRootTolerance = 1e-12;
+constexpr int kMaxRootIterations = 100;
+
+// ---------------------------------------------------------------------------
+// Trigonometric polynomials of degree 4 in real form:
+// f(theta) = C[0] + sum_{k=1..4} C[k] cos(k theta) + S[k] sin(k theta).
+
+struct TrigPolynomial {
+  std::array<double, kTrigDegree + 1> C{}, S{};  // S[0] unused (0)
+
+  /// The coefficients of the degree-4 trigonometric polynomial with values
+  /// f(theta_j) at theta_j = 2 pi j / 9, j = 0..8: the discrete Fourier
+  /// transform, exact for this degree (9 samples, no aliasing).
+  static TrigPolynomial fromSamples(const std::array<double, kSamples>& values) {
+    struct Table {
+      double cos_kj[kTrigDegree + 1][kSamples], sin_kj[kTrigDegree + 1][kSamples];
+      Table() {
+        for (int k = 0; k <= kTrigDegree; ++k) {
+          for (int j = 0; j < kSamples; ++j) {
+            const double angle = 2 * kPi * k * j / kSamples;
+            cos_kj[k][j] = std::cos(angle);
+            sin_kj[k][j] = std::sin(angle);
+          }
+        }
+      }
+    };
+    static const Table table;
+    TrigPolynomial f;
+    for (int k = 0; k <= kTrigDegree; ++k) {
+      double c = 0, s = 0;
+      for (int j = 0; j < kSamples; ++j) {
+        c += values[j] * table.cos_kj[k][j];
+        s += values[j] * table.sin_kj[k][j];
+      }
+      const double weight = (k == 0 ? 1.0 : 2.0) / kSamples;
+      f.C[k] = weight * c;
+      f.S[k] = k == 0 ? 0.0 : weight * s;
+    }
+    return f;
+  }
+  TrigPolynomial derivative() const {
+    TrigPolynomial f;
+    for (int k = 1; k <= kTrigDegree; ++k) f.C[k] = k * S[k], f.S[k] = -k * C[k];
+    return f;
+  }
+};
+
+/// An algebraic polynomial p[0] + p[1] t + ... + p[8] t^8.
+using Polynomial = std::array<double, kPolyDegree + 1>;
+
+/// (1 + t^2)^4 cos(k theta) and (1 + t^2)^4 sin(k theta) at theta = 2 atan(t):
+/// the real and imaginary parts of (1 + i t)^(2k) (1 + t^2)^(4 - k), since
+/// e^{i theta} = (1 + i t)^2 / (1 + t^2). Integer coefficients.
+struct ChartBasis {
+  std::array<Polynomial, kTrigDegree + 1> cos_k{}, sin_k{};
+  ChartBasis() {
+    for (int k = 0; k <= kTrigDegree; ++k) {
+      // (1 + i t)^(2k) = sum_j binom(2k, j) i^j t^j.
+      using Complex = std::complex<double>;
+      std::array<Complex, kPolyDegree + 1> power{};
+      double binom = 1;
+      for (int j = 0; j <= 2 * k; ++j) {
+        static constexpr Complex kIPowers[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        power[j] = binom * kIPowers[j % 4];
+        binom = binom * (2 * k - j) / (j + 1);
+      }
+      // times (1 + t^2)^(4 - k) = sum_l binom(4 - k, l) t^(2l).
+      double binom_l = 1;
+      for (int l = 0; l <= kTrigDegree - k; ++l) {
+        for (int j = 0; j <= 2 * k; ++j) {
+          cos_k[k][j + 2 * l] += binom_l * power[j].real();
+          sin_k[k][j + 2 * l] += binom_l * power[j].imag();
+        }
+        binom_l = binom_l * (kTrigDegree - k - l) / (l + 1);
+      }
+    }
+  }
+};
+
+/// f on the chart theta = offset + 2 atan(t), times (1 + t^2)^4; offset 0 or
+/// pi (cos and sin of k(pi + phi) are (-1)^k those of k phi).
+Polynomial onChart(const TrigPolynomial& f, bool shifted_by_pi) {
+  static const ChartBasis basis;
+  Polynomial p{};
+  for (int k = 0; k <= kTrigDegree; ++k) {
+    const double sign = shifted_by_pi && k % 2 == 1 ? -1.0 : 1.0;
+    const double C = sign * f.C[k], S = sign * f.S[k];
+    for (int j = 0; j <= kPolyDegree; ++j) p[j] += C * basis.cos_k[k][j] + S * basis.sin_k[k][j];
+  }
+  return p;
+}
+
+double evaluate(const double* p, int degree, double t) {
+  double value = p[degree];
+  for (int j = degree - 1; j >= 0; --j) value = value * t + p[j];
+  return value;
+}
+
+/// The root of p in [lo, hi], where p(lo) and p(hi) have opposite signs:
+/// Newton steps kept inside the bracket, bisection when a step would leave it.
+double rootInBracket(const double* p, const double* dp, int degree, double lo, double hi,
+                     double p_lo) {
+  // Start where the chord between the bracket's ends crosses zero.
+  const double p_hi = evaluate(p, degree, hi);
+  double t = p_hi != p_lo ? lo - p_lo * (hi - lo) / (p_hi - p_lo) : 0.5 * (lo + hi);
+  if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  for (int i = 0; i < kMaxRootIterations && hi - lo > kRootTolerance; ++i) {
+    const double value = evaluate(p, degree, t);
+    if (value == 0.0) return t;
+    if ((value < 0) == (p_lo < 0)) {
+      lo = t;
+      p_lo = value;
+    } else {
+      hi = t;
+    }
+    const double slope = evaluate(dp, degree - 1, t);
+    const double newton = slope != 0.0 ? t - value / slope : lo - 1;
+    if (!(newton > lo && newton < hi)) {
+      t = 0.5 * (lo + hi);
+      continue;
+    }
+    // Newton converges from one side, so the bracket need not shrink: stop
+    // on a step at the resolution of t.
+    const bool converged = std::abs(newton - t) <= kRootTolerance;
+    t = newton;
+    if (converged) break;
+  }
+  return t;
+}
+
+/// p in the Bernstein basis of [-1, 1]: p(t) = sum_i b_i binom(8, i) s^i (1 - s)^(8 - i)
+/// with t = 2 s - 1. By Descartes' rule for this basis, p has at most as many
+/// roots in the interval as b has sign changes, and the same parity.
+using Bernstein = std::array<double, kPolyDegree + 1>;
+
+Bernstein toBernstein(const Polynomial& p) {
+  // q(s) = p(2 s - 1) by Horner's scheme on polynomials in s.
+  Polynomial q{};
+  for (int j = kPolyDegree; j >= 0; --j) {
+    for (int i = kPolyDegree; i >= 1; --i) q[i] = 2 * q[i - 1] - q[i];
+    q[0] = p[j] - q[0];
+  }
+  // b_i = sum_{j <= i} binom(i, j) / binom(8, j) q_j.
+  static constexpr double kBinom8[kPolyDegree + 1] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
+  Bernstein b{};
+  for (int i = 0; i <= kPolyDegree; ++i) {
+    double binom_ij = 1;  // binom(i, j)
+    for (int j = 0; j <= i; ++j) {
+      b[i] += binom_ij / kBinom8[j] * q[j];
+      binom_ij = binom_ij * (i - j) / (j + 1);
+    }
+  }
+  return b;
+}
+
+int signChanges(const Bernstein& b) {
+  int changes = 0;
+  double last = 0.0;
+  for (const double x : b) {
+    if (x == 0.0) continue;
+    if (last != 0.0 && (x < 0) != (last < 0)) ++changes;
+    last = x;
+  }
+  return changes;
+}
+
+/// Subdivisions of [-1, 1] before an interval whose coefficients still change
+/// sign more than once is taken as one candidate (its midpoint): a cluster of
+/// roots (a double root split by rounding) 2^-40 wide in t, where p's
+/// candidates differ by far less than the rounding of F.
+constexpr int kMaxSubdivisions = 40;
+
+/// Real roots of p (monomial basis) in [-1, 1], appended to `out` (at most
+/// `capacity`): Bernstein subdivision (de Casteljau halves) until each interval
+/// has no sign change (no root) or one (one root, bracketed: Newton within the
+/// bracket), or is kMaxSubdivisions deep (its midpoint).
+int rootsOnChart(const Polynomial& p, double* out, int capacity) {
+  Polynomial dp{};
+  for (int j = 0; j < kPolyDegree; ++j) dp[j] = (j + 1) * p[j + 1];
+  struct Interval {
+    Bernstein b;
+    double lo, hi;
+    int depth;
+  };
+  std::array<Interval, kMaxSubdivisions + 2> stack;
+  int size = 0, count = 0;
+  stack[size++] = {toBernstein(p), -1.0, 1.0, 0};
+  while (size > 0 && count < capacity) {
+    const Interval interval = stack[--size];
+    const Bernstein& b = interval.b;
+    const int changes = signChanges(b);
+    if (changes == 0) {
+      if (b[0] == 0.0) out[count++] = interval.lo;
+      continue;
+    }
+    if (changes == 1 && b[0] != 0.0 && b[kPolyDegree] != 0.0) {
+      out[count++] = rootInBracket(p.data(), dp.data(), kPolyDegree, interval.lo, interval.hi,
+                                   evaluate(p.data(), kPolyDegree, interval.lo));
+      continue;
+    }
+    const double mid = 0.5 * (interval.lo + interval.hi);
+    if (interval.depth >= kMaxSubdivisions || size + 2 > int(stack.size())) {
+      out[count++] = mid;
+      continue;
+    }
+    // de Casteljau at s = 1/2: the left half's coefficients are the first
+    // entries of each level, the right half's the last.
+    Interval left{{}, interval.lo, mid, interval.depth + 1};
+    Interval right{{}, mid, interval.hi, interval.depth + 1};
+    Bernstein level = b;
+    for (int r = 0; r <= kPolyDegree; ++r) {
+      left.b[r] = level[0];
+      right.b[kPolyDegree - r] = level[kPolyDegree - r];
+      for (int i = 0; i < kPolyDegree - r; ++i) level[i] = 0.5 * (level[i] + level[i + 1]);
+    }
+    stack[size++] = right;
+    stack[size++] = left;
+  }
+  return count;
+}
+
+// ---------------------------------------------------------------------------
+// The pair in disk 1's frame, lengths in scene sizes.
+
+struct Penetration {
+  double depth;  ///< PD, scene sizes.
+  Vec3 w;        ///< unit minimiser, frame 1.
+  Vec3 p1, p2;   ///< witnesses, frame 1, scene sizes.
+};
+
+class PenetrationSearch {
+ public:
+  explicit PenetrationSearch(const PairInFrame1& pair)
+      : c_(pair.c), u_(pair.R.col(0)), v_(pair.R.col(1)), r1_(pair.r1), r2_(pair.r2) {}
+
+  /// F(w) = -c.w + r1 |P1 w| + r2 |P2 w|: translating disk 2 by t w separates
+  /// the disks iff t > F(w). Keeps the smallest.
+  void consider(const Vec3& w) {
+    const double p1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
+    const double a = u_.dot(w), b = v_.dot(w);
+    const double value = -c_.dot(w) + r1_ * p1 + r2_ * std::sqrt(a * a + b * b);
+    if (value < best_value_) best_value_ = value, best_w_ = w;
+  }
+
+  /// The candidates of rim angle theta of disk 2 (given as cos, sin): its rim
+  /// point a and the rim points b of disk 1 that make (b, a) critical for the
+  /// distance between the rims (nearest and farthest to a), each giving the
+  /// direction (b - a) / |b - a|.
+  void considerRimAngle(double cos_theta, double sin_theta) {
+    const Vec3 a = c_ + r2_ * (cos_theta * u_ + sin_theta * v_);
+    const Vec3 t2 = -sin_theta * u_ + cos_theta * v_;
+    const double rho = std::sqrt(a.x() * a.x() + a.y() * a.y());
+    if (rho > kOnAxisTolerance) {
+      const Vec3 radial(a.x() / rho, a.y() / rho, 0.0);
+      considerPair(r1_ * radial, a, t2);
+      considerPair(-r1_ * radial, a, t2);
+      return;
+    }
+    // a on (or next to) disk 1's axis: every rim point of disk 1 is (nearly)
+    // as far; the critical ones satisfy (b - a).t2 = 0, i.e.
+    // r1 (t2x cos phi + t2y sin phi) = a.t2.
+    const double m = std::sqrt(t2.x() * t2.x() + t2.y() * t2.y());
+    const double target = a.dot(t2);
+    if (!(r1_ * m >= std::abs(target)) || m == 0.0) return;
+    const double base = std::atan2(t2.y(), t2.x());
+    const double spread = std::acos(target / (r1_ * m));
+    for (const double phi : {base + spread, base - spread}) {
+      considerPair(Vec3(r1_ * std::cos(phi), r1_ * std::sin(phi), 0.0), a, t2);
+    }
+  }
+
+  void considerPair(const Vec3& b, const Vec3& a, const Vec3& t2) {
+    const Vec3 gap = b - a;
+    const double length = gap.norm();
+    if (length > kCoincidentRimPoints) {
+      consider(gap / length);
+      return;
+    }
+    // The rims meet: the separating direction is normal to both tangents.
+    const Vec3 t1(-b.y(), b.x(), 0.0);
+    const Vec3 normal = t1.cross(t2);
+    const double normal_length = normal.norm();
+    if (normal_length == 0.0) return;
+    consider(normal / normal_length);
+    consider(-normal / normal_length);
+  }
+
+  double bestValue() const { return best_value_; }
+  const Vec3& bestDirection() const { return best_w_; }
+
+ private:
+  Vec3 c_, u_, v_;
+  double r1_, r2_;
+  double best_value_ = std::numeric_limits<double>::infinity();
+  Vec3 best_w_ = Vec3::UnitZ();
+};
+
+/// The penetration of a pair in frame 1 whose lengths are in scene sizes.
+Penetration penetrationInFrame1(const PairInFrame1& pair) {
+  PenetrationSearch search(pair);
+  const Vec3 n2 = pair.R.col(2);
+  // The kinks first: their order is the documented tie-break.
+  search.consider(Vec3::UnitZ());
+  search.consider(-Vec3::UnitZ());
+  search.consider(n2);
+  search.consider(-n2);
+
+  // Q(theta) = rho^2 L^2 - r1^2 K^2 along disk 2's rim a(theta) = c + r2 (cos u + sin v).
+  const Vec3& c = pair.c;
+  const Vec3 u = pair.R.col(0), v = pair.R.col(1);
+  const double r1 = pair.r1, r2 = pair.r2;
+  std::array<double, kSamples> samples;
+  for (int j = 0; j < kSamples; ++j) {
+    const double angle = 2 * kPi * j / kSamples;
+    const double cos_theta = std::cos(angle), sin_theta = std::sin(angle);
+    const Vec3 a = c + r2 * (cos_theta * u + sin_theta * v);   // rim point
+    const Vec3 da = r2 * (cos_theta * v - sin_theta * u);      // its derivative
+    const double rho2 = a.x() * a.x() + a.y() * a.y();
+    const double K = a.x() * da.x() + a.y() * da.y();  // (rho^2)' / 2
+    const double L = c.dot(da);                        // (|a|^2)' / 2
+    samples[j] = rho2 * L * L - r1 * r1 * K * K;
+  }
+  const TrigPolynomial Q = TrigPolynomial::fromSamples(samples);
+
+  // Candidate angles: the roots of Q and of Q' (an extremum of Q marks a
+  // double root that rounding may keep from changing sign) on both charts.
+  const TrigPolynomial dQ = Q.derivative();
+  for (const bool shifted : {false, true}) {
+    std::array<double, 4 * kPolyDegree> ts;
+    int num = rootsOnChart(onChart(Q, shifted), ts.data(), 2 * kPolyDegree);
+    num += rootsOnChart(onChart(dQ, shifted), ts.data() + num, 2 * kPolyDegree);
+    const double sign = shifted ? -1.0 : 1.0;
+    for (int i = 0; i < num; ++i) {
+      const double t = ts[i], denominator = 1.0 + t * t;
+      search.considerRimAngle(sign * (1.0 - t * t) / denominator, sign * 2.0 * t / denominator);
+    }
+  }
+  // Eight fixed angles: the candidates when Q vanishes identically (pairs
+  // symmetric about disk 1's axis), harmless upper bounds otherwise.
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * (kPi / 4);
+    search.considerRimAngle(std::cos(angle), std::sin(angle));
+  }
+
+  Penetration out;
+  out.depth = search.bestValue();
+  out.w = search.bestDirection();
+  // Witnesses: the support point of the disk whose plane w is farther from
+  // normal to (a rim point), the other one PD * w away.
+  const double in_plane1 = std::sqrt(out.w.x() * out.w.x() + out.w.y() * out.w.y());
+  const double in_plane2 = pair.inPlane2(out.w);
+  if (std::max(in_plane1, in_plane2) < kAlongNormal) {
+    // Parallel planes: w is the common normal; coplanar (PD = 0 up to rounding).
+    const auto common = internal::commonPoint(pair);
+    out.p1 = out.p2 = common ? *common : Vec3(0.0, 0.0, 0.5 * pair.c.z());
+  } else if (in_plane2 >= in_plane1) {
+    const Vec3 P2w = out.w - n2.dot(out.w) * n2;
+    out.p2 = pair.c - (r2 / in_plane2) * P2w;
+    out.p1 = out.p2 + out.depth * out.w;
+  } else {
+    out.p1 = Vec3(out.w.x(), out.w.y(), 0.0) * (r1 / in_plane1);
+    out.p2 = out.p1 - out.depth * out.w;
+  }
+  return out;
+}
+
+template <typename S>
+DiskSignedDistanceResult<S> nanSignedDistance() {
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  DiskSignedDistanceResult<S> result;
+  result.signed_distance = nan;
+  result.p_W1.setConstant(nan);
+  result.p_W2.setConstant(nan);
+  result.direction.setConstant(nan);
+  return result;
+}
+
+}  // namespace
+
+template <typename S>
+DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                            const fcl::Transform3<S>& X_W2) {
+  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return nanSignedDistance<S>();
+  const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
+  const double scale = pair.scale();
+  const PairInFrame1 unit_pair =
+      PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
+  const Penetration found = penetrationInFrame1(unit_pair);
+
+  const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
+  const Vec3 c1 = X_W1.translation().template cast<double>();
+  DiskSignedDistanceResult<S> result;
+  result.signed_distance = S(-found.depth * scale);
+  result.p_W1 = (c1 + R_W1 * (found.p1 * scale)).template cast<S>();
+  result.p_W2 = (c1 + R_W1 * (found.p2 * scale)).template cast<S>();
+  // Normalised: R_W1 is orthonormal only to within kRotationDefectTolerance.
+  result.direction = (R_W1 * found.w).normalized().template cast<S>();
+  return result;
+}
+
+template <typename S>
+DiskSignedDistanceResult<S> signedDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                               const fcl::Transform3<S>& X_W2) {
+  const DiskDistanceResult<S> apart = exactDiskDistance(r1, X_W1, r2, X_W2);
+  if (std::isnan(apart.distance)) return nanSignedDistance<S>();
+  if (!(apart.distance > 0)) return diskPenetration(r1, X_W1, r2, X_W2);
+  DiskSignedDistanceResult<S> result;
+  result.signed_distance = apart.distance;
+  result.p_W1 = apart.p_W1;
+  result.p_W2 = apart.p_W2;
+  result.direction = (apart.p_W2.template cast<double>() - apart.p_W1.template cast<double>())
+                         .normalized()
+                         .template cast<S>();
+  return result;
+}
+
+template DiskSignedDistanceResult<float> diskPenetration(float, const fcl::Transform3<float>&,
+                                                         float, const fcl::Transform3<float>&);
+template DiskSignedDistanceResult<double> diskPenetration(double, const fcl::Transform3<double>&,
+                                                          double,
+                                                          const fcl::Transform3<double>&);
+template DiskSignedDistanceResult<float> signedDiskDistance(float, const fcl::Transform3<float>&,
+                                                            float,
+                                                            const fcl::Transform3<float>&);
+template DiskSignedDistanceResult<double> signedDiskDistance(
+    double, const fcl::Transform3<double>&, double, const fcl::Transform3<double>&);
+
+}  // namespace fcl_disk
