@@ -31,6 +31,12 @@ constexpr double kPi = 3.141592653589793;
 /// at least 1e-10 relative, far inside what the candidate needs.
 constexpr double kOnAxisTolerance = 1e-6;
 
+/// Q counts as vanishing identically when no coefficient exceeds this many
+/// times the size of its terms rho^2 L^2 and r1^2 K^2 (their rounding is
+/// ~1e-16 of it); then kFixedAnglesWhenQVanishes rim angles are the candidates.
+constexpr double kQVanishes = 1e-12;
+constexpr int kFixedAnglesWhenQVanishes = 64;
+
 /// Two rim points closer than this (scene sizes) give no direction b - a; the
 /// candidates are then the normals +-t1 x t2 of both tangents.
 constexpr double kCoincidentRimPoints = 1e-9;
@@ -216,6 +222,12 @@ int signChanges(const Bernstein& b) {
 /// candidates differ by far less than the rounding of F.
 constexpr int kMaxSubdivisions = 40;
 
+/// At most this many intervals are examined per polynomial (a degree-8
+/// polynomial with simple roots needs a few dozen); past it, each interval
+/// left is taken as one candidate (its midpoint). Bounds the work when
+/// rounding scatters sign changes through nearly vanishing coefficients.
+constexpr int kMaxIntervals = 256;
+
 /// Real roots of p (monomial basis) in [-1, 1], appended to `out` (at most
 /// `capacity`): Bernstein subdivision (de Casteljau halves) until each interval
 /// has no sign change (no root) or one (one root, bracketed: Newton within the
@@ -229,10 +241,14 @@ int rootsOnChart(const Polynomial& p, double* out, int capacity) {
     int depth;
   };
   std::array<Interval, kMaxSubdivisions + 2> stack;
-  int size = 0, count = 0;
+  int size = 0, count = 0, examined = 0;
   stack[size++] = {toBernstein(p), -1.0, 1.0, 0};
   while (size > 0 && count < capacity) {
     const Interval interval = stack[--size];
+    if (++examined > kMaxIntervals) {
+      out[count++] = 0.5 * (interval.lo + interval.hi);
+      continue;
+    }
     const Bernstein& b = interval.b;
     const int changes = signChanges(b);
     if (changes == 0) {
@@ -293,13 +309,14 @@ class PenetrationSearch {
   /// distance between the rims (nearest and farthest to a), each giving the
   /// direction (b - a) / |b - a|.
   void considerRimAngle(double cos_theta, double sin_theta) {
-    const Vec3 a = c_ + r2_ * (cos_theta * u_ + sin_theta * v_);
+    const Vec3 e2 = cos_theta * u_ + sin_theta * v_;  // outward radial of disk 2 at a
+    const Vec3 a = c_ + r2_ * e2;
     const Vec3 t2 = -sin_theta * u_ + cos_theta * v_;
     const double rho = std::sqrt(a.x() * a.x() + a.y() * a.y());
     if (rho > kOnAxisTolerance) {
       const Vec3 radial(a.x() / rho, a.y() / rho, 0.0);
-      considerPair(r1_ * radial, a, t2);
-      considerPair(-r1_ * radial, a, t2);
+      considerPair(r1_ * radial, a, t2, e2);
+      considerPair(-r1_ * radial, a, t2, e2);
       return;
     }
     // a on (or next to) disk 1's axis: every rim point of disk 1 is (nearly)
@@ -311,24 +328,32 @@ class PenetrationSearch {
     const double base = std::atan2(t2.y(), t2.x());
     const double spread = std::acos(target / (r1_ * m));
     for (const double phi : {base + spread, base - spread}) {
-      considerPair(Vec3(r1_ * std::cos(phi), r1_ * std::sin(phi), 0.0), a, t2);
+      considerPair(Vec3(r1_ * std::cos(phi), r1_ * std::sin(phi), 0.0), a, t2, e2);
     }
   }
 
-  void considerPair(const Vec3& b, const Vec3& a, const Vec3& t2) {
+  void considerPair(const Vec3& b, const Vec3& a, const Vec3& t2, const Vec3& e2) {
     const Vec3 gap = b - a;
     const double length = gap.norm();
     if (length > kCoincidentRimPoints) {
       consider(gap / length);
       return;
     }
-    // The rims meet: the separating direction is normal to both tangents.
-    const Vec3 t1(-b.y(), b.x(), 0.0);
+    // The rims meet at b = a: a separating direction lies in both normal
+    // cones there, {alpha n1 + beta e1, beta >= 0} and minus disk 2's,
+    // {alpha n2 - beta e2}: along t1 x t2, or (parallel tangents: a sector of
+    // the plane normal to them) at one of the cones' edges, e1 or -e2 (the
+    // normals are the kinks, already considered).
+    const Vec3 e1 = b / r1_;
+    const Vec3 t1(-e1.y(), e1.x(), 0.0);
     const Vec3 normal = t1.cross(t2);
     const double normal_length = normal.norm();
-    if (normal_length == 0.0) return;
-    consider(normal / normal_length);
-    consider(-normal / normal_length);
+    if (normal_length > 0.0) {
+      consider(normal / normal_length);
+      consider(-normal / normal_length);
+    }
+    consider(e1);
+    consider(-e2);
   }
 
   double bestValue() const { return best_value_; }
@@ -340,6 +365,28 @@ class PenetrationSearch {
   double best_value_ = std::numeric_limits<double>::infinity();
   Vec3 best_w_ = Vec3::UnitZ();
 };
+
+/// The penetration with its witnesses: the support point of the disk whose
+/// plane w is farther from normal to (a rim point; a face point when w is its
+/// normal), the other one PD * w away.
+Penetration withWitnesses(const PairInFrame1& pair, double depth, const Vec3& w) {
+  Penetration out{depth, w, Vec3::Zero(), Vec3::Zero()};
+  const Vec3 n2 = pair.R.col(2);
+  const double in_plane1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
+  const double in_plane2 = pair.inPlane2(w);
+  if (std::max(in_plane1, in_plane2) < kAlongNormal) {
+    // Parallel planes: w is the common normal; coplanar (PD = 0 up to rounding).
+    const auto common = internal::commonPoint(pair);
+    out.p1 = out.p2 = common ? *common : Vec3(0.0, 0.0, 0.5 * pair.c.z());
+  } else if (in_plane2 >= in_plane1) {
+    out.p2 = pair.c - (pair.r2 / in_plane2) * (w - n2.dot(w) * n2);
+    out.p1 = out.p2 + depth * w;
+  } else {
+    out.p1 = Vec3(w.x(), w.y(), 0.0) * (pair.r1 / in_plane1);
+    out.p2 = out.p1 - depth * w;
+  }
+  return out;
+}
 
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
 Penetration penetrationInFrame1(const PairInFrame1& pair) {
@@ -356,6 +403,7 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
   const Vec3 u = pair.R.col(0), v = pair.R.col(1);
   const double r1 = pair.r1, r2 = pair.r2;
   std::array<double, kSamples> samples;
+  double terms = 0.0;  // the size of Q's two terms, for its rounding
   for (int j = 0; j < kSamples; ++j) {
     const double angle = 2 * kPi * j / kSamples;
     const double cos_theta = std::cos(angle), sin_theta = std::sin(angle);
@@ -365,8 +413,23 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
     const double K = a.x() * da.x() + a.y() * da.y();  // (rho^2)' / 2
     const double L = c.dot(da);                        // (|a|^2)' / 2
     samples[j] = rho2 * L * L - r1 * r1 * K * K;
+    terms = std::max(terms, rho2 * L * L + r1 * r1 * K * K);
   }
   const TrigPolynomial Q = TrigPolynomial::fromSamples(samples);
+  double largest_coefficient = 0.0;
+  for (int k = 0; k <= kTrigDegree; ++k) {
+    largest_coefficient = std::max({largest_coefficient, std::abs(Q.C[k]), std::abs(Q.S[k])});
+  }
+  if (!(largest_coefficient > kQVanishes * terms)) {
+    // Q = 0 to rounding: every rim angle is critical (rims at a constant
+    // distance: coaxial disks, or rim 2 a Villarceau circle of a torus about
+    // rim 1); the candidates are kFixedAnglesWhenQVanishes angles.
+    for (int k = 0; k < kFixedAnglesWhenQVanishes; ++k) {
+      const double angle = 2 * kPi * k / kFixedAnglesWhenQVanishes;
+      search.considerRimAngle(std::cos(angle), std::sin(angle));
+    }
+    return withWitnesses(pair, search.bestValue(), search.bestDirection());
+  }
 
   // Candidate angles: the roots of Q and of Q' (an extremum of Q marks a
   // double root that rounding may keep from changing sign) on both charts.
@@ -388,26 +451,7 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
     search.considerRimAngle(std::cos(angle), std::sin(angle));
   }
 
-  Penetration out;
-  out.depth = search.bestValue();
-  out.w = search.bestDirection();
-  // Witnesses: the support point of the disk whose plane w is farther from
-  // normal to (a rim point), the other one PD * w away.
-  const double in_plane1 = std::sqrt(out.w.x() * out.w.x() + out.w.y() * out.w.y());
-  const double in_plane2 = pair.inPlane2(out.w);
-  if (std::max(in_plane1, in_plane2) < kAlongNormal) {
-    // Parallel planes: w is the common normal; coplanar (PD = 0 up to rounding).
-    const auto common = internal::commonPoint(pair);
-    out.p1 = out.p2 = common ? *common : Vec3(0.0, 0.0, 0.5 * pair.c.z());
-  } else if (in_plane2 >= in_plane1) {
-    const Vec3 P2w = out.w - n2.dot(out.w) * n2;
-    out.p2 = pair.c - (r2 / in_plane2) * P2w;
-    out.p1 = out.p2 + out.depth * out.w;
-  } else {
-    out.p1 = Vec3(out.w.x(), out.w.y(), 0.0) * (r1 / in_plane1);
-    out.p2 = out.p1 - out.depth * out.w;
-  }
-  return out;
+  return withWitnesses(pair, search.bestValue(), search.bestDirection());
 }
 
 template <typename S>
