@@ -245,6 +245,7 @@ constexpr bool kHasDiskPair = !std::is_void<typename DiskPairShape<NodeType, S>:
 template <typename S, typename Shape>
 S answerDiskShapeDistance(const Disk<S>& disk, const Transform3<S>& X_WD, const Shape& shape,
                           const Transform3<S>& X_WS, bool disk_first,
+                          const fcl::DistanceRequest<S>& request,
                           fcl::DistanceResult<S>& result) {
   if (distanceIsSettled(result)) return result.min_distance;
   ++t_disk_answers;
@@ -253,11 +254,25 @@ S answerDiskShapeDistance(const Disk<S>& disk, const Transform3<S>& X_WD, const 
   const CollisionGeometry<S>* o2 = &shape;
   if (!disk_first) std::swap(o1, o2);
   if (std::isnan(answer.distance)) return answerNoDistance<S>(o1, o2, result);
-  // Overlap: distance 0 with a common point as both nearest points, as for disk pairs.
+  fcl::Vector3<S> p_disk = answer.p_W_disk, p_shape = answer.p_W_shape;
+  S distance = answer.distance;
+  if constexpr (kExactDiskShapePenetration<Shape>) {
+    // Overlap, signed: minus the exact penetration depth with the deepest
+    // points, as for disk pairs (decided as collide() decides).
+    if (request.enable_signed_distance && !(answer.distance > 0) &&
+        diskShapeIntersect(disk.radius, X_WD, shape, X_WS)) {
+      const DiskSignedDistanceResult<S> signed_answer =
+          signedDiskShapeDistance(disk.radius, X_WD, shape, X_WS);
+      distance = signed_answer.signed_distance;
+      p_disk = signed_answer.p_W1;
+      p_shape = signed_answer.p_W2;
+    }
+  }
+  // Otherwise an overlap is distance 0 with a common point as both nearest points.
   if (disk_first) {
-    keepIfNearer(result, answer.distance, o1, o2, answer.p_W_disk, answer.p_W_shape);
+    keepIfNearer(result, distance, o1, o2, p_disk, p_shape);
   } else {
-    keepIfNearer(result, answer.distance, o1, o2, answer.p_W_shape, answer.p_W_disk);
+    keepIfNearer(result, distance, o1, o2, p_shape, p_disk);
   }
   return result.min_distance;
 }
@@ -657,13 +672,13 @@ struct DistanceSlot {
     if constexpr (Row == fcl::GEOM_CYLINDER && kHasDiskPair<Col, S>) {
       if (disk1) {
         return answerDiskShapeDistance(*disk1, tf1, static_cast<const PairShape<Col, S>&>(*o2),
-                                       tf2, /*disk_first=*/true, result);
+                                       tf2, /*disk_first=*/true, request, result);
       }
     }
     if constexpr (Col == fcl::GEOM_CYLINDER && kHasDiskPair<Row, S>) {
       if (disk2) {
         return answerDiskShapeDistance(*disk2, tf2, static_cast<const PairShape<Row, S>&>(*o1),
-                                       tf1, /*disk_first=*/false, result);
+                                       tf1, /*disk_first=*/false, request, result);
       }
     }
     if constexpr (Col == fcl::GEOM_CYLINDER && kHasDiskEnvironment<Row, S>) {
@@ -842,10 +857,10 @@ S distanceOfObjects(const fcl::CollisionObject<S>* o1, const fcl::CollisionObjec
     S distance = 0;
     const bool answered =
         disk1 ? withDiskPairShape(g2, [&](const auto& shape) {
-                  distance = answerDiskShapeDistance(*disk1, tf1, shape, tf2, true, result);
+                  distance = answerDiskShapeDistance(*disk1, tf1, shape, tf2, true, request, result);
                 })
               : withDiskPairShape(g1, [&](const auto& shape) {
-                  distance = answerDiskShapeDistance(*disk2, tf2, shape, tf1, false, result);
+                  distance = answerDiskShapeDistance(*disk2, tf2, shape, tf1, false, request, result);
                 });
     if (answered) return distance;
   }

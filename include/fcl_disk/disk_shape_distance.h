@@ -15,6 +15,7 @@
 
 #include <fcl_disk/disk_intersection.h>
 #include <fcl_disk/disk_pair.h>
+#include <fcl_disk/disk_penetration.h>
 
 namespace fcl_disk {
 
@@ -91,9 +92,79 @@ DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>&
 /// shape, and translating the shape by penetration_depth * normal separates them:
 /// the smallest such translation among the disk's normal and the shape's own
 /// candidate directions (docs/disk_shape_distance.md section 5). It is an upper
-/// bound on the penetration depth, exact for Halfspace.
+/// bound on the penetration depth, exact for Sphere, Halfspace and Plane
+/// (kExactDiskShapePenetration).
 template <typename S, typename Shape>
 bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact = nullptr);
+
+/// The shapes whose diskShapeIntersect() contact is the exact penetration depth
+/// and direction, so that signedDiskShapeDistance() exists for them. Sphere: the
+/// shortest way out is straight away from the disk point nearest the centre
+/// (depth radius - that distance; along the disk's normal when the centre lies
+/// on the disk); Halfspace: along its outward normal reversed; Plane: along
+/// +-its normal (docs/disk_shape_distance.md, section 5).
+template <typename Shape>
+constexpr bool kExactDiskShapePenetration = false;
+/// @cond
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Sphere<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Halfspace<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Plane<S>> = true;
+/// @endcond
+
+/// Signed distance between the disk and `shape` (kExactDiskShapePenetration
+/// shapes), with the disk as object 1: diskShapeDistance() when apart
+/// (direction = (p_W2 - p_W1) / d); minus the exact penetration depth when they
+/// share a point, with `direction` the unit vector from the disk towards the
+/// shape along which translating the shape by the depth separates them (the
+/// gradient of the signed distance with respect to the shape's translation),
+/// p_W1 the disk's point deepest along it and p_W2 = p_W1 - depth * direction
+/// the shape's point deepest along -direction (FCL's EPA convention).
+/// Frames, units, scale and invalid input (NaN result) as diskShapeDistance.
+template <typename S, typename Shape>
+DiskSignedDistanceResult<S> signedDiskShapeDistance(S radius, const fcl::Transform3<S>& X_WD,
+                                                    const Shape& shape,
+                                                    const fcl::Transform3<S>& X_WS) {
+  static_assert(kExactDiskShapePenetration<Shape>,
+                "signedDiskShapeDistance: the penetration depth is exact for Sphere, "
+                "Halfspace and Plane only");
+  const S nan = std::numeric_limits<S>::quiet_NaN();
+  DiskSignedDistanceResult<S> result;
+  const DiskShapeDistanceResult<S> apart = diskShapeDistance(radius, X_WD, shape, X_WS);
+  DiskContact<S> contact;
+  if (std::isnan(apart.distance)) {
+    result.signed_distance = nan;
+    result.p_W1.setConstant(nan);
+    result.p_W2.setConstant(nan);
+    result.direction.setConstant(nan);
+    return result;
+  }
+  if (apart.distance > 0 || !diskShapeIntersect(radius, X_WD, shape, X_WS, &contact)) {
+    result.signed_distance = apart.distance;
+    result.p_W1 = apart.p_W_disk;
+    result.p_W2 = apart.p_W_shape;
+    const fcl::Vector3<S> gap = apart.p_W_shape - apart.p_W_disk;
+    if (gap.norm() > 0) result.direction = gap.normalized();
+    return result;
+  }
+  const fcl::Vector3<S>& w = contact.normal;
+  // The disk's support point along w: on its rim, unless w is within
+  // kAlongNormal rad of its normal, when (up to that angle times the radius)
+  // every point ties and the contact point, a point of the disk, is one.
+  constexpr S kAlongNormal = S(1e-9);
+  const fcl::Matrix3<S> R = X_WD.linear();
+  const S a = R.col(0).dot(w), b = R.col(1).dot(w);
+  const S in_plane = std::sqrt(a * a + b * b);
+  result.p_W1 = in_plane > kAlongNormal ? fcl::Vector3<S>(X_WD.translation() +
+                                                     (radius / in_plane) * (a * R.col(0) + b * R.col(1)))
+                                   : contact.pos;
+  result.signed_distance = -contact.penetration_depth;
+  result.direction = w;
+  result.p_W2 = result.p_W1 - contact.penetration_depth * w;
+  return result;
+}
 
 }  // namespace fcl_disk

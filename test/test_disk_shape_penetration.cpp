@@ -1,0 +1,292 @@
+// Signed distance of a Disk against the shapes with an exact penetration depth
+// (Sphere, Halfspace, Plane: kExactDiskShapePenetration), standalone and through
+// fcl::distance / fcl::collide, float and double, against a long-double
+// reference written here from the geometry (not from the solver's code):
+//   sphere:    PD = rho - dist(s, disk), dist by projecting s on the disk's plane
+//              and clamping to the rim;
+//   halfspace: PD = r |P m| - h0 (the disk's lowest height below the boundary);
+//   plane:     PD = min(h0 + r |P m|, r |P m| - h0).
+#include <fcl/narrowphase/collision.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl_disk/fcl_disk.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "test_random.h"
+
+namespace {
+
+using fcl_disk_test::Random;
+using Vd = Eigen::Vector3d;
+using Real = long double;
+using VR = Eigen::Matrix<Real, 3, 1>;
+
+/// Relative tolerances (of scale = r + shape size + centre distance). double:
+/// the solvers' 1e-12 promise; float: the inputs and results are rounded to
+/// float, 16 ulps of the scale.
+template <typename S>
+constexpr double kDepthRelative = std::is_same<S, float>::value ? 16 * 1.2e-7 : 1e-12;
+/// The separation check's step: far above either rounding, far below any depth tested.
+constexpr double kSeparationStepRelative = 1e-6;
+/// The path of the continuity check moves the shape by this much per step (scale units).
+constexpr double kPathStepRelative = 1e-3;
+constexpr int kPosesPerShape = 30000;
+
+template <typename S>
+fcl::Transform3<S> randomPose(Random& rng, double reach) {
+  fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+  X.linear() = rng.rotation().cast<S>();
+  X.translation() = rng.inBall(reach).cast<S>();
+  return X;
+}
+
+VR toReal(const Vd& v) { return v.cast<Real>(); }
+
+/// Distance from a point to a disk (centre c, unit normal n, radius r).
+Real pointDiskDistance(const VR& x, const VR& c, const VR& n, Real r) {
+  const VR d = x - c;
+  const Real height = d.dot(n);
+  const VR in_plane = d - height * n;
+  const Real radial = std::sqrt(in_plane.squaredNorm());
+  const Real outside = std::max(radial - r, Real(0));
+  return std::sqrt(height * height + outside * outside);
+}
+
+/// The disk's lowest height along unit m (relative to its centre): -r |P m|.
+Real halfSpan(const VR& n, const VR& m, Real r) {
+  const VR in_plane = m - m.dot(n) * n;
+  return r * std::sqrt(in_plane.squaredNorm());
+}
+
+struct Pose {
+  VR c, n;
+  Real r;
+};
+
+template <typename S>
+Pose diskOf(S r, const fcl::Transform3<S>& X) {
+  return {toReal(X.translation().template cast<double>()),
+          toReal(X.linear().col(2).template cast<double>()).normalized(), Real(r)};
+}
+
+/// Reference penetration depth (negative: minus the distance, for the plane
+/// and halfspace; the sphere's is only used when they intersect).
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Sphere<S>& sphere,
+                    const fcl::Transform3<S>& X_WS) {
+  const Pose disk = diskOf(r, X_WD);
+  return Real(sphere.radius) -
+         pointDiskDistance(toReal(X_WS.translation().template cast<double>()), disk.c, disk.n,
+                           disk.r);
+}
+
+/// A boundary n.y = d in the shape frame, in the world: unit m and height of the disk centre.
+template <typename S>
+std::pair<VR, Real> boundaryInWorld(const fcl::Vector3<S>& n_S, S d, const fcl::Transform3<S>& X_WS,
+                                    const VR& c) {
+  const VR n = toReal(n_S.template cast<double>());
+  const Real length = std::sqrt(n.squaredNorm());
+  const Eigen::Matrix<Real, 3, 3> R = X_WS.linear().template cast<Real>();
+  const VR m = R * (n / length);
+  const VR point = X_WS.translation().template cast<Real>() + m * (Real(d) / length);
+  return {m, m.dot(c - point)};
+}
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Halfspace<S>& halfspace,
+                    const fcl::Transform3<S>& X_WS) {
+  const Pose disk = diskOf(r, X_WD);
+  const auto [m, h0] = boundaryInWorld(halfspace.n, halfspace.d, X_WS, disk.c);
+  return halfSpan(disk.n, m, disk.r) - h0;
+}
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Plane<S>& plane,
+                    const fcl::Transform3<S>& X_WS) {
+  const Pose disk = diskOf(r, X_WD);
+  const auto [m, h0] = boundaryInWorld(plane.n, plane.d, X_WS, disk.c);
+  const Real span = halfSpan(disk.n, m, disk.r);
+  return std::min(span + h0, span - h0);
+}
+
+/// Random shapes of size ~0.5 at centres in the unit ball, a disk of radius
+/// 0.2..1, so that a good share of poses intersect.
+template <typename S>
+fcl::Sphere<S> randomShape(Random& rng, fcl::Sphere<S>*) {
+  return fcl::Sphere<S>(S(rng.uniform(0.05, 1.0)));
+}
+template <typename S>
+fcl::Halfspace<S> randomShape(Random& rng, fcl::Halfspace<S>*) {
+  return fcl::Halfspace<S>(rng.unitVector().cast<S>(), S(rng.uniform(-0.5, 0.5)));
+}
+template <typename S>
+fcl::Plane<S> randomShape(Random& rng, fcl::Plane<S>*) {
+  return fcl::Plane<S>(rng.unitVector().cast<S>(), S(rng.uniform(-0.5, 0.5)));
+}
+
+template <typename S, typename Shape>
+void checkShape(const char* name, std::uint64_t seed) {
+  SCOPED_TRACE(name);
+  Random rng(seed);
+  int intersecting = 0;
+  double worst = 0;
+  for (int i = 0; i < kPosesPerShape; ++i) {
+    const S r = S(rng.uniform(0.2, 1.0));
+    const fcl::Transform3<S> X_WD = randomPose<S>(rng, 1.0);
+    const fcl::Transform3<S> X_WS = randomPose<S>(rng, 1.0);
+    const Shape shape = randomShape<S>(rng, static_cast<Shape*>(nullptr));
+    const double scale = double(r) + 1.0 + 2.0;  // r + shape size + centre distance bound
+    const double tolerance = kDepthRelative<S> * scale;
+    const auto answer = fcl_disk::signedDiskShapeDistance(r, X_WD, shape, X_WS);
+    const auto trace = [&] { return std::string(name) + " pose " + std::to_string(i); };
+    ASSERT_TRUE(std::isfinite(double(answer.signed_distance))) << trace();
+    EXPECT_NEAR(answer.direction.template cast<double>().norm(), 1.0, 1e-6) << trace();
+    if (answer.signed_distance > 0) {
+      // Apart: the plain distance, direction from the disk's point to the shape's.
+      const auto distance = fcl_disk::diskShapeDistance(r, X_WD, shape, X_WS);
+      EXPECT_EQ(answer.signed_distance, distance.distance) << trace();
+      continue;
+    }
+    ++intersecting;
+    const double depth = -double(answer.signed_distance);
+    const double reference = double(referenceDepth(r, X_WD, shape, X_WS));
+    EXPECT_NEAR(depth, reference, tolerance) << trace();
+    worst = std::max(worst, std::abs(depth - reference) / scale);
+    // Witnesses: p1 - p2 = depth * direction, p1 on the disk.
+    const Vd p1 = answer.p_W1.template cast<double>(), p2 = answer.p_W2.template cast<double>();
+    const Vd w = answer.direction.template cast<double>();
+    EXPECT_LE((p1 - p2 - depth * w).norm(), tolerance) << trace();
+    const Pose disk = diskOf(r, X_WD);
+    EXPECT_LE(double(pointDiskDistance(toReal(p1), disk.c, disk.n, disk.r)), tolerance) << trace();
+    // Moving the shape by depth + step along the direction separates; by
+    // depth - step it does not.
+    const double step = kSeparationStepRelative * scale;
+    fcl::Transform3<S> moved = X_WS;
+    moved.translation() = (X_WS.translation().template cast<double>() + (depth + step) * w).template cast<S>();
+    EXPECT_GT(fcl_disk::diskShapeDistance(r, X_WD, shape, moved).distance, S(0)) << trace();
+    if (depth > 2 * step) {
+      moved.translation() =
+          (X_WS.translation().template cast<double>() + (depth - step) * w).template cast<S>();
+      EXPECT_TRUE(fcl_disk::diskShapeIntersect(r, X_WD, shape, moved)) << trace();
+    }
+    // Through FCL, both orders and solvers: -depth; libccd with the deepest
+    // points (FCL's EPA convention), indep with collide()'s contact point.
+    auto disk_geometry = std::make_shared<fcl_disk::Disk<S>>(r);
+    auto shape_geometry = std::make_shared<Shape>(shape);
+    fcl::CollisionObject<S> disk_object(disk_geometry, X_WD), shape_object(shape_geometry, X_WS);
+    for (const auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+      for (const bool disk_first : {true, false}) {
+        fcl::DistanceRequest<S> request(true);
+        request.enable_signed_distance = true;
+        request.gjk_solver_type = solver;
+        fcl::DistanceResult<S> result;
+        if (disk_first) {
+          fcl::distance(&disk_object, &shape_object, request, result);
+        } else {
+          fcl::distance(&shape_object, &disk_object, request, result);
+        }
+        EXPECT_NEAR(double(result.min_distance), -depth, tolerance) << trace();
+        if (solver == fcl::GST_LIBCCD && depth > 0) {
+          const Vd o1_point = (disk_first ? p1 : p2), o2_point = (disk_first ? p2 : p1);
+          EXPECT_LE((result.nearest_points[0].template cast<double>() - o1_point).norm(), tolerance)
+              << trace();
+          EXPECT_LE((result.nearest_points[1].template cast<double>() - o2_point).norm(), tolerance)
+              << trace();
+        }
+      }
+    }
+    // fcl::collide: one contact, depth and normal of the penetration.
+    fcl::CollisionRequest<S> request(1, true);
+    fcl::CollisionResult<S> result;
+    ASSERT_EQ(fcl::collide(&disk_object, &shape_object, request, result), 1u) << trace();
+    EXPECT_NEAR(double(result.getContact(0).penetration_depth), depth, tolerance) << trace();
+    if (depth > tolerance) {
+      EXPECT_LE((result.getContact(0).normal.template cast<double>() - w).norm(), 1e-6) << trace();
+    }
+  }
+  std::cout << "  " << name << ": " << intersecting << " intersecting poses of " << kPosesPerShape
+            << ", largest |PD - PD_ref| / scale " << worst << "\n";
+  EXPECT_GT(intersecting, kPosesPerShape / 10);
+}
+
+template <typename S>
+class DiskShapePenetration : public ::testing::Test {};
+using Scalars = ::testing::Types<float, double>;
+TYPED_TEST_SUITE(DiskShapePenetration, Scalars);
+
+TYPED_TEST(DiskShapePenetration, SphereMatchesReference) {
+  checkShape<TypeParam, fcl::Sphere<TypeParam>>("sphere", 11);
+}
+TYPED_TEST(DiskShapePenetration, HalfspaceMatchesReference) {
+  checkShape<TypeParam, fcl::Halfspace<TypeParam>>("halfspace", 12);
+}
+TYPED_TEST(DiskShapePenetration, PlaneMatchesReference) {
+  checkShape<TypeParam, fcl::Plane<TypeParam>>("plane", 13);
+}
+
+TEST(DiskShapePenetration, HandMadeCases) {
+  using X = fcl::Transform3d;
+  X disk = X::Identity();  // radius 1 in the XY plane at the origin
+  // A sphere of radius 0.5 centred 0.2 above the disk's face: out along +z by 0.3.
+  X sphere_pose = X::Identity();
+  sphere_pose.translation() = Vd(0.3, 0, 0.2);
+  auto s = fcl_disk::signedDiskShapeDistance(1.0, disk, fcl::Sphered(0.5), sphere_pose);
+  EXPECT_NEAR(s.signed_distance, -0.3, 1e-15);
+  EXPECT_NEAR((s.direction - Vd::UnitZ()).norm(), 0.0, 1e-15);
+  // Centre on the disk: out along the normal by the radius (tie between +-n).
+  sphere_pose.translation() = Vd(0.3, 0, 0);
+  s = fcl_disk::signedDiskShapeDistance(1.0, disk, fcl::Sphered(0.5), sphere_pose);
+  EXPECT_NEAR(s.signed_distance, -0.5, 1e-15);
+  EXPECT_NEAR(std::abs(s.direction.z()), 1.0, 1e-15);
+  // Centre beyond the rim: out radially, by 0.5 - 0.1.
+  sphere_pose.translation() = Vd(1.1, 0, 0);
+  s = fcl_disk::signedDiskShapeDistance(1.0, disk, fcl::Sphered(0.5), sphere_pose);
+  EXPECT_NEAR(s.signed_distance, -0.4, 1e-15);
+  EXPECT_NEAR((s.direction - Vd::UnitX()).norm(), 0.0, 1e-15);
+  // The ground z <= 0 under a disk standing on its rim, sunk 0.25 into it.
+  X standing = X::Identity();
+  standing.linear() = Eigen::AngleAxisd(M_PI / 2, Vd::UnitX()).toRotationMatrix();
+  standing.translation() = Vd(0, 0, 0.75);
+  s = fcl_disk::signedDiskShapeDistance(1.0, standing, fcl::Halfspaced(Vd::UnitZ(), 0.0),
+                                        X::Identity());
+  EXPECT_NEAR(s.signed_distance, -0.25, 1e-15);
+  EXPECT_NEAR((s.direction + Vd::UnitZ()).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((s.p_W1 - Vd(0, 0, -0.25)).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((s.p_W2 - Vd(0, 0, 0)).norm(), 0.0, 1e-15);
+  // The plane z = 0 through the same disk: out by the shorter side, 0.25 (down).
+  s = fcl_disk::signedDiskShapeDistance(1.0, standing, fcl::Planed(Vd::UnitZ(), 0.0), X::Identity());
+  EXPECT_NEAR(s.signed_distance, -0.25, 1e-15);
+  // NaN in, NaN out.
+  X nan_pose = X::Identity();
+  nan_pose.translation().x() = std::nan("");
+  s = fcl_disk::signedDiskShapeDistance(1.0, nan_pose, fcl::Sphered(0.5), X::Identity());
+  EXPECT_TRUE(std::isnan(s.signed_distance));
+}
+
+/// The signed distance is continuous through contact and 1-Lipschitz in the
+/// shape's translation.
+TEST(DiskShapePenetration, ContinuousThroughContact) {
+  using X = fcl::Transform3d;
+  Random rng(21);
+  for (int path = 0; path < 50; ++path) {
+    const X disk = randomPose<double>(rng, 0.5);
+    X sphere_pose = X::Identity();
+    const Vd start = rng.inBall(0.2), direction = rng.unitVector();
+    double last = NAN;
+    for (int k = 0; k <= 2000; ++k) {
+      sphere_pose.translation() = start + (k * kPathStepRelative) * direction;
+      const double sd =
+          fcl_disk::signedDiskShapeDistance(0.7, disk, fcl::Sphered(0.3), sphere_pose).signed_distance;
+      if (k > 0) {
+        EXPECT_LE(std::abs(sd - last), kPathStepRelative * (1 + 1e-9) + 1e-12)
+            << "path " << path << " step " << k;
+      }
+      last = sd;
+    }
+  }
+}
+
+}  // namespace
