@@ -54,6 +54,33 @@
 // reference of test/disk_shape_oracle.h. Writes shapes.csv (one row per
 // shape) and shapes.png (bench/plot_shapes.py) in --out. --no-shapes skips the
 // section, --shapes-only runs nothing else.
+//
+// Then a section on the penetration depth PD of intersecting disk pairs
+// (--penetration-pairs N per family, bench/disk_penetration_cases.h: chain
+// links, a disk through another's interior, a rim cap through a face, coplanar
+// overlap, coaxial-centred crossing, nearly touching from inside (PD 1e-9..1e-3
+// of the scene), far from the origin (translated by 1e5), random intersecting;
+// fixed seed, kept when fcl_disk::intersectDisks says they intersect). Queries,
+// plain fcl::distance on CollisionObjects with enable_signed_distance (so
+// min_distance = -PD), timed like the disk pairs above:
+//   disk                    the Disk pair, GST_LIBCCD (fcl_disk's hook);
+//   disk_direct             fcl_disk::diskPenetration called directly;
+//   epa_libccd_h<h>         FCL on Cylinder(r, h) pairs, GST_LIBCCD: libccd's EPA;
+//   indep_h<h>              the same, GST_INDEP: FCL's entry calls collide() and
+//                           reports minus the contact depth (FCL's own EPA),
+// for h in {1e-2, 1e-4, 1e-6}. FCL query kinds are probed per family in a forked
+// child first, as in the shape section (Debian's libfcl 0.7 keeps its asserts:
+// indep's collide() reports negative contact depths on these cylinder pairs, so
+// its signed-distance entry aborts on `index != -1`; libccd's EPA trips an
+// assert on some families). A query that throws (libccd's EPA: std::logic_error
+// "origin outside of the polytope") is counted and named, not timed. Error:
+// |(-min_distance) - PD_ref| / (r1 + r2 + |c1 - c2|), PD_ref from the
+// independent long-double reference of test/reference_penetration.h on the
+// first 200 pairs of each family (it costs ~1 ms a pair), and against
+// diskPenetration on every pair; without that header the errors are against
+// diskPenetration only, and labelled so. Writes penetration.csv (one row per
+// query and family) in --out. --no-penetration skips the section,
+// --penetration-only runs nothing else (with --shapes-only: those two sections).
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
@@ -72,7 +99,9 @@
 #include <iomanip>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 #include <vector>
 
@@ -86,6 +115,9 @@
 
 #include "disk_shape_cases.h"
 #include "disk_shape_oracle.h"
+
+#include "disk_penetration_cases.h"
+#include "reference_penetration.h"
 
 #ifndef FCL_DISK_PLOT_SCRIPT
 #define FCL_DISK_PLOT_SCRIPT "bench/plot_report.py"
@@ -119,12 +151,21 @@ struct Options {
   int shape_pairs = 2000;     ///< disk-vs-shape section: cases per shape
   bool shapes = true;         ///< run the disk-vs-shape section
   bool shapes_only = false;   ///< run only the disk-vs-shape section
+  /// Penetration section: intersecting pairs per family. FCL's thin-cylinder
+  /// EPA costs ~5-300 us a query and runs ~7 times per pair (first answer,
+  /// calibration, 5 batches of one) for each of 3 heights: ~0.7 ms per pair on
+  /// the reference machine (2-core EPYC), so 8 families of 2000 pairs (plus the
+  /// reference on 200 of each) take ~15 s.
+  int penetration_pairs = 2000;
+  bool penetration = true;        ///< run the penetration section
+  bool penetration_only = false;  ///< run only the penetration section
 };
 
 void printUsage(const char* argv0) {
   std::printf(
       "Usage: %s [--quick] [--out DIR] [--pairs N] [--reps R] [--batch-ns T] [--seed S] "
       "[--pairs-csv] [--no-plot] [--shape-pairs N] [--no-shapes] [--shapes-only]\n"
+      "       [--penetration-pairs N] [--no-penetration] [--penetration-only]\n"
       "Runs every disk-disk solver (exact, almohamad_selim, FCL GJK libccd/indep on\n"
       "Cylinder(r, h), h = 1e-2, 1e-4, 1e-6) through fcl::distance on every configuration\n"
       "family, and reports time per query against error vs a long-double reference.\n"
@@ -141,13 +182,19 @@ void printUsage(const char* argv0) {
       "Sphere(r) and GJK on Cylinder(r, 0) on the same poses (shapes.csv, shapes.png):\n"
       "  --shape-pairs N  random cases per shape (default 2000; quick 20)\n"
       "  --no-shapes      skip that section\n"
-      "  --shapes-only    run only that section\n",
+      "  --shapes-only    run only that section\n"
+      "Then the penetration depth of intersecting disk pairs (fcl::distance with\n"
+      "enable_signed_distance: Disk pairs, fcl_disk::diskPenetration, FCL's EPA on\n"
+      "Cylinder(r, h) pairs; penetration.csv):\n"
+      "  --penetration-pairs N  intersecting pairs per family (default 2000; quick 20)\n"
+      "  --no-penetration       skip that section\n"
+      "  --penetration-only     run only that section (with --shapes-only: those two)\n",
       argv0, FCL_DISK_DEFAULT_OUT);
 }
 
 bool parseOptions(int argc, char** argv, Options* options) {
   bool pairs_set = false, reps_set = false, batch_set = false;
-  bool shape_pairs_set = false;
+  bool shape_pairs_set = false, penetration_pairs_set = false;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&](const char* name) -> const char* {
@@ -183,6 +230,13 @@ bool parseOptions(int argc, char** argv, Options* options) {
       options->shapes = false;
     } else if (arg == "--shapes-only") {
       options->shapes_only = true;
+    } else if (arg == "--penetration-pairs") {
+      options->penetration_pairs = std::atoi(value("--penetration-pairs"));
+      penetration_pairs_set = true;
+    } else if (arg == "--no-penetration") {
+      options->penetration = false;
+    } else if (arg == "--penetration-only") {
+      options->penetration_only = true;
     } else if (arg == "--help" || arg == "-h") {
       printUsage(argv[0]);
       std::exit(0);
@@ -197,9 +251,11 @@ bool parseOptions(int argc, char** argv, Options* options) {
     if (!reps_set) options->reps = 3;
     if (!batch_set) options->batch_ns = 500;
     if (!shape_pairs_set) options->shape_pairs = 20;
+    if (!penetration_pairs_set) options->penetration_pairs = 20;
   }
-  if (options->shape_pairs < 1) {
-    std::fprintf(stderr, "fcl_disk_report: --shape-pairs must be positive\n");
+  if (options->shape_pairs < 1 || options->penetration_pairs < 1) {
+    std::fprintf(stderr,
+                 "fcl_disk_report: --shape-pairs and --penetration-pairs must be positive\n");
     return false;
   }
   if (options->pairs_per_family < 1 || options->reps < 1 || !(options->batch_ns > 0)) {
@@ -907,6 +963,545 @@ int runShapeSection(const Options& options, double clock_ns) {
   return 0;
 }
 
+// ---------------------------------------------------------------------------
+// Penetration depth of intersecting disk pairs.
+
+namespace pen = fcl_disk_penetration_cases;
+
+// The independent long-double penetration reference of the tests
+// (test/reference_penetration.h: a dense Fibonacci-sphere scan of F(w) plus
+// local refinement and the four kinks, no fcl_disk code).
+double penReference(const pen::PenCase& c) {
+  return static_cast<double>(
+      fcl_disk_penetration_reference::referencePenetration(c.r1, c.X_W1, c.r2, c.X_W2).pd);
+}
+/// The reference costs ~1 ms per pair (20000 directions, then refinement in long
+/// double): errors against it come from the first kPenReferencedPairs pairs of
+/// each family (~1.6 s for 8 families); every pair is also compared with
+/// fcl_disk's own answer.
+constexpr std::size_t kPenReferencedPairs = 200;
+/// diskPenetration's documented bound (include/fcl_disk/disk_penetration.h),
+/// relative to the scene r1 + r2 + |c1 - c2|.
+constexpr double kPenBound = 1e-12;
+/// An answer above this (relative to the scene) on an intersecting pair counts
+/// as "reported apart": the disks' own rounding (coplanar pairs: PD = 0 to
+/// ~1e-17) stays far below it, a solver that misses the overlap does not.
+constexpr double kReportedApart = kPenBound;
+
+enum class PenKind { disk_fcl, disk_direct, epa_libccd, indep };
+
+struct PenQuery {
+  std::string name;
+  std::string path;
+  PenKind kind;
+  int height_index = 0;  ///< into kHeights, for the thin-cylinder kinds
+  bool isFcl() const { return kind != PenKind::disk_direct; }
+  bool isCylinder() const { return kind == PenKind::epa_libccd || kind == PenKind::indep; }
+};
+
+std::vector<PenQuery> makePenQueries() {
+  std::vector<PenQuery> queries;
+  queries.push_back({"disk", "fcl::distance", PenKind::disk_fcl});
+  queries.push_back({"disk_direct", "direct", PenKind::disk_direct});
+  const char* heights[] = {"1e-2", "1e-4", "1e-6"};
+  for (PenKind kind : {PenKind::epa_libccd, PenKind::indep}) {
+    for (int h = 0; h < kNumHeights; ++h) {
+      queries.push_back({std::string(kind == PenKind::epa_libccd ? "epa_libccd_h" : "indep_h") +
+                             heights[h],
+                         "fcl::distance", kind, h});
+    }
+  }
+  return queries;
+}
+
+/// One prepared pair: the case, its PD (reference and fcl_disk's), the objects.
+struct PenPair {
+  pen::PenCase c;
+  double reference = std::nan("");  ///< PD_ref (rounded to double); NaN unreferenced
+  double fcl_disk_pd = 0;           ///< -diskPenetration().signed_distance
+  std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
+};
+
+PenPair preparePenPair(pen::PenCase c) {
+  PenPair p;
+  p.fcl_disk_pd = -fcl_disk::diskPenetration(c.r1, c.X_W1, c.r2, c.X_W2).signed_distance;
+  p.disk1 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r1),
+                                                    c.X_W1);
+  p.disk2 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r2),
+                                                    c.X_W2);
+  // FCL's Cylinder(r, h) is centred on its frame, axis +z: the disk thickened
+  // by h/2 on each side, so its PD exceeds the disk's by up to h.
+  for (double h : kHeights) {
+    p.cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
+        std::make_shared<fcl::Cylinderd>(c.r1, h), c.X_W1));
+    p.cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
+        std::make_shared<fcl::Cylinderd>(c.r2, h), c.X_W2));
+  }
+  p.c = std::move(c);
+  return p;
+}
+
+/// One signed-distance query; returns the signed distance (-PD on overlap) or,
+/// for FCL, whatever min_distance it left (max() when nothing answered).
+inline double penQuery(const PenQuery& q, const PenPair& p) {
+  if (q.kind == PenKind::disk_direct)
+    return fcl_disk::diskPenetration(p.c.r1, p.c.X_W1, p.c.r2, p.c.X_W2).signed_distance;
+  fcl::DistanceRequestd request;
+  request.enable_signed_distance = true;
+  request.gjk_solver_type = q.kind == PenKind::indep ? fcl::GST_INDEP : fcl::GST_LIBCCD;
+  fcl::DistanceResultd result;
+  if (q.isCylinder()) {
+    fcl::distance(p.cyl1[q.height_index].get(), p.cyl2[q.height_index].get(), request, result);
+  } else {
+    fcl::distance(p.disk1.get(), p.disk2.get(), request, result);
+  }
+  return result.min_distance;
+}
+
+struct PenSummary {
+  std::string query, path, family;
+  bool measured = true;
+  std::string skip_reason;
+  std::size_t pairs = 0, referenced = 0;
+  double median_ns = std::nan(""), p99_ns = std::nan("");
+  double median_err = std::nan(""), max_err = std::nan("");  ///< vs reference (subset)
+  std::string worst_case;                                    ///< pair of max_err
+  double max_err_vs_disk = std::nan("");  ///< vs diskPenetration, every pair
+  std::size_t reported_apart = 0;  ///< answers > kReportedApart * scale
+  std::size_t threw = 0;           ///< pairs where the query threw (not timed)
+  std::string threw_example;       ///< the first of them and its message
+  double slowest_ns = std::nan("");
+  std::string slowest_case;
+};
+
+/// Per-pair raw figures of one query over one family (or pooled).
+struct PenSamples {
+  std::vector<double> ns, err, err_vs_disk;
+  std::string worst_case;
+  double worst_err = -1;
+  std::size_t reported_apart = 0, threw = 0;
+  std::string threw_example;
+  std::string slowest_case;
+  double slowest_ns = -1;
+
+  void append(const PenSamples& other) {
+    ns.insert(ns.end(), other.ns.begin(), other.ns.end());
+    err.insert(err.end(), other.err.begin(), other.err.end());
+    err_vs_disk.insert(err_vs_disk.end(), other.err_vs_disk.begin(), other.err_vs_disk.end());
+    if (other.worst_err > worst_err) {
+      worst_err = other.worst_err;
+      worst_case = other.worst_case;
+    }
+    reported_apart += other.reported_apart;
+    threw += other.threw;
+    if (threw_example.empty()) threw_example = other.threw_example;
+    if (other.slowest_ns > slowest_ns) {
+      slowest_ns = other.slowest_ns;
+      slowest_case = other.slowest_case;
+    }
+  }
+};
+
+PenSummary summarisePen(const PenQuery& q, const std::string& family, const PenSamples& s) {
+  PenSummary out;
+  out.query = q.name;
+  out.path = q.path;
+  out.family = family;
+  out.pairs = s.ns.size();
+  out.referenced = s.err.size();
+  out.median_ns = median(s.ns);
+  out.p99_ns = percentile(s.ns, 0.99);
+  out.median_err = median(s.err);
+  out.max_err = s.err.empty() ? std::nan("") : *std::max_element(s.err.begin(), s.err.end());
+  out.worst_case = s.worst_case;
+  out.max_err_vs_disk = s.err_vs_disk.empty()
+                            ? std::nan("")
+                            : *std::max_element(s.err_vs_disk.begin(), s.err_vs_disk.end());
+  out.reported_apart = s.reported_apart;
+  out.threw = s.threw;
+  out.threw_example = s.threw_example;
+  out.slowest_ns = s.slowest_ns >= 0 ? s.slowest_ns : std::nan("");
+  out.slowest_case = s.slowest_case;
+  return out;
+}
+
+/// The informative line of an exception FCL threw: for libccd's EPA, the
+/// "Original error message" without its source path (the rest of what() is the
+/// two shapes and poses, over a dozen lines).
+std::string exceptionSummary(const std::exception& e) {
+  std::string text = e.what();
+  const std::string marker = "Original error message: ";
+  const auto at = text.find(marker);
+  if (at != std::string::npos) {
+    text = text.substr(at + marker.size());
+    const auto after_path = text.find("): ");  // "file:(line): function(): message"
+    if (after_path != std::string::npos) text = text.substr(after_path + 3);
+  }
+  text = text.substr(0, text.find('\n'));
+  const bool logic_error = dynamic_cast<const std::logic_error*>(&e) != nullptr;
+  return std::string(logic_error ? "std::logic_error: " : "exception: ") + text;
+}
+
+/// dsc::probeInChild with the child's stderr (file descriptor 2: failed
+/// assertions and abort messages of libfcl, which std::cerr capture misses)
+/// sent to a temporary file instead of the terminal; a failure's reason gets
+/// the failed assertion from it.
+dsc::ProbeOutcome probeQuietly(const std::function<int()>& body,
+                               const std::function<std::string(int)>& describe) {
+  char path[] = "/tmp/fcl_disk_report_probe_XXXXXX";
+  const int fd = mkstemp(path);
+  dsc::ProbeOutcome outcome = dsc::probeInChild(
+      [&]() {
+        if (fd >= 0) dup2(fd, 2);
+        return body();
+      },
+      describe);
+  if (fd < 0) return outcome;
+  std::ifstream file(path);
+  std::string line, assertion;
+  while (std::getline(file, line)) {
+    const auto at = line.find("Assertion `");
+    if (at == std::string::npos) continue;
+    // "prog: file:line: function: Assertion `x' failed.": keep file:line and the test.
+    const auto file_start = line.find(": ");
+    const auto file_end = line.find(": ", file_start + 2);
+    std::string where = file_start != std::string::npos && file_end != std::string::npos
+                            ? line.substr(file_start + 2, file_end - file_start - 2)
+                            : std::string();
+    const auto slash = where.rfind('/');
+    if (slash != std::string::npos) where = where.substr(slash + 1);
+    assertion = where + ": " + line.substr(at);
+    break;
+  }
+  close(fd);
+  unlink(path);
+  if (!outcome.ok && !assertion.empty()) outcome.reason += ": " + assertion;
+  return outcome;
+}
+
+int runPenetrationSection(const Options& options, double clock_ns) {
+  const auto& families = pen::allPenFamilies();
+  const std::vector<PenQuery> queries = makePenQueries();
+  const std::size_t num_queries = queries.size();
+  const std::size_t n = static_cast<std::size_t>(options.penetration_pairs);
+  // FCL's distance with a fresh result: min_distance starts at max().
+  constexpr double kUnanswered = std::numeric_limits<double>::max();
+
+  std::vector<std::vector<PenSamples>> samples(families.size(),
+                                               std::vector<PenSamples>(num_queries));
+  std::vector<std::vector<std::string>> skipped(families.size(),
+                                                std::vector<std::string>(num_queries));
+  std::vector<std::size_t> generated(families.size(), 0);
+  // The reference against the constructions with a closed-form PD (coplanar,
+  // coaxial, nearly touching/face): a check of the yardstick itself.
+  double worst_known_gap = -1;
+  std::string worst_known_case;
+  // fcl_disk against its bound, on the referenced pairs.
+  std::vector<std::string> above_bound;
+  std::size_t referenced_total = 0;
+
+  const auto run_start = Clock::now();
+  {
+    Progress progress(families.size() * n);
+    std::size_t done = 0;
+    for (std::size_t f = 0; f < families.size(); ++f) {
+      const pen::PenFamily family = families[f];
+      const std::string label = "penetration " + std::to_string(f + 1) + "/" +
+                                std::to_string(families.size()) + " " +
+                                pen::penFamilyName(family);
+      progress.update(done, std::string(label) + ": pairs", true);
+      std::vector<PenPair> pairs;
+      pairs.reserve(n);
+      for (pen::PenCase& c : pen::makePenFamily(family, n, options.seed))
+        pairs.push_back(preparePenPair(std::move(c)));
+      generated[f] = pairs.size();
+
+      progress.update(done, std::string(label) + ": reference", true);
+      const std::size_t referenced = std::min(pairs.size(), kPenReferencedPairs);
+      for (std::size_t i = 0; i < referenced; ++i) {
+        PenPair& p = pairs[i];
+        p.reference = penReference(p.c);
+        ++referenced_total;
+        if (!std::isnan(p.c.known_pd)) {
+          const double gap = std::fabs(p.reference - p.c.known_pd) / p.c.scale;
+          if (gap > worst_known_gap) {
+            worst_known_gap = gap;
+            worst_known_case = p.c.name;
+          }
+        }
+        if (!(std::fabs(p.fcl_disk_pd - p.reference) <= kPenBound * p.c.scale)) {
+          char line[256];
+          std::snprintf(line, sizeof line, "%s: fcl_disk %.17g, reference %.17g, error %.1e",
+                        p.c.name.c_str(), p.fcl_disk_pd, p.reference,
+                        std::fabs(p.fcl_disk_pd - p.reference) / p.c.scale);
+          above_bound.push_back(line);
+        }
+      }
+
+      // Every FCL query kind once over the family, in a child: skip what does
+      // not finish (FCL's EPA on degenerate simplices may crash or loop).
+      progress.update(done, std::string(label) + ": probe", true);
+      for (std::size_t q = 0; q < num_queries; ++q) {
+        if (!queries[q].isFcl()) continue;
+        const auto outcome = probeQuietly(
+            [&]() -> int {
+              for (const PenPair& p : pairs) {
+                double d = 0;
+                try {
+                  d = penQuery(queries[q], p);
+                } catch (const std::exception&) {
+                  continue;  // counted per pair when timing
+                }
+                if (d == kUnanswered) return 10;
+                if (std::isnan(d)) return 11;
+              }
+              return 0;
+            },
+            [](int code) {
+              return code == 10   ? std::string("no answer (distance left at max)")
+                     : code == 11 ? std::string("NaN distance")
+                                  : "exit code " + std::to_string(code);
+            });
+        if (!outcome.ok) skipped[f][q] = outcome.reason;
+      }
+
+      for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const PenPair& p = pairs[i];
+        for (std::size_t j = 0; j < num_queries; ++j) {
+          const std::size_t q = (i + j) % num_queries;  // rotate the order
+          if (!skipped[f][q].empty()) continue;
+          PenSamples& s = samples[f][q];
+          // libccd's EPA throws std::logic_error on some pairs ("the origin is
+          // outside of the polytope"): a deterministic failure of that pair,
+          // counted and named rather than losing the family's other pairs.
+          double answer = 0, time_ns = 0;
+          try {
+            std::tie(answer, time_ns) =
+                timeRepeated([&]() { return penQuery(queries[q], p); }, options, clock_ns);
+          } catch (const std::exception& e) {
+            if (s.threw++ == 0) s.threw_example = p.c.name + ": " + exceptionSummary(e);
+            continue;
+          }
+          s.ns.push_back(time_ns);
+          if (time_ns > s.slowest_ns) {
+            s.slowest_ns = time_ns;
+            s.slowest_case = p.c.name;
+          }
+          if (answer > kReportedApart * p.c.scale) ++s.reported_apart;
+          const double pd = -answer;
+          auto relative = [&](double pd_ref) {
+            const double e = std::fabs(pd - pd_ref) / p.c.scale;
+            return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
+          };
+          s.err_vs_disk.push_back(relative(p.fcl_disk_pd));
+          if (std::isnan(p.reference)) continue;
+          const double e = relative(p.reference);
+          s.err.push_back(e);
+          if (e > s.worst_err) {
+            s.worst_err = e;
+            s.worst_case = p.c.name;
+          }
+        }
+        progress.update(done + i + 1, std::string(label) + ": timing");
+      }
+      done += n;
+    }
+    progress.finish();
+  }
+  const double run_seconds = nsBetween(run_start, Clock::now()) * 1e-9;
+
+  // Summaries: per (family, query), and pooled per query over the families
+  // where it was measured.
+  std::vector<std::string> family_names;
+  for (pen::PenFamily family : families) family_names.push_back(pen::penFamilyName(family));
+  std::vector<std::vector<PenSummary>> table(families.size() + 1);  // last: "all"
+  for (std::size_t q = 0; q < num_queries; ++q) {
+    PenSamples pooled;
+    std::size_t measured_families = 0;
+    for (std::size_t f = 0; f < families.size(); ++f) {
+      PenSummary s = summarisePen(queries[q], family_names[f], samples[f][q]);
+      if (!skipped[f][q].empty()) {
+        s.measured = false;
+        s.skip_reason = skipped[f][q];
+      } else {
+        pooled.append(samples[f][q]);
+        ++measured_families;
+      }
+      table[f].push_back(s);
+    }
+    PenSummary all = summarisePen(queries[q], "all", pooled);
+    all.measured = measured_families > 0;
+    if (measured_families < families.size())
+      all.skip_reason = "pooled over " + std::to_string(measured_families) + " of " +
+                        std::to_string(families.size()) + " families";
+    table[families.size()].push_back(all);
+  }
+  family_names.push_back("all");
+  // Indices of the disk queries in each row set (makePenQueries' order); the
+  // first is the denominator of the ratios.
+  const std::size_t kDiskQuery = 0, kDiskDirectQuery = 1;
+  // A query skipped in every family for one and the same reason is named once
+  // (row "all", one note) instead of once per family.
+  std::vector<std::string> skipped_everywhere(num_queries);
+  for (std::size_t q = 0; q < num_queries; ++q) {
+    bool same = !skipped[0][q].empty();
+    for (std::size_t f = 1; f < families.size() && same; ++f)
+      same = skipped[f][q] == skipped[0][q];
+    if (same) skipped_everywhere[q] = skipped[0][q];
+  }
+
+  // Table.
+  std::printf("\n## Penetration depth of intersecting disks (fcl::distance, "
+              "enable_signed_distance; %d pairs per family, seed %llu)\n\n",
+              options.penetration_pairs, static_cast<unsigned long long>(options.seed));
+  std::printf("machine: %s, %ld logical CPUs; time = median of %d batches of the same query "
+              "(batch ~%.0f ns, clock cost %.1f ns subtracted), then median and p99 over the "
+              "pairs; the section took %.0f s.\n",
+              machineName().c_str(), sysconf(_SC_NPROCESSORS_ONLN), options.reps,
+              options.batch_ns, clock_ns, run_seconds);
+  std::printf("Pairs: bench/disk_penetration_cases.h, kept when fcl_disk::intersectDisks says "
+              "they intersect. disk = Disk pair (GST_LIBCCD, fcl_disk's hook); disk_direct = "
+              "fcl_disk::diskPenetration; epa_libccd_h<h> = FCL on Cylinder(r, h) pairs, "
+              "GST_LIBCCD (libccd's EPA); indep_h<h> = the same, GST_INDEP (FCL's entry calls "
+              "collide() and reports minus the contact depth). A cylinder's PD exceeds the "
+              "disk's by up to h, so its error is at least that much from the model alone.\n");
+  std::printf("err = |(-min_distance) - PD_ref| / (r1 + r2 + |c1 - c2|) over the first %zu "
+              "pairs of each family (ref pairs), PD_ref: long-double reference "
+              "(test/reference_penetration.h); err vs fcl_disk = the same against "
+              "diskPenetration, over every pair.\n\n",
+              kPenReferencedPairs);
+  const char* err_label = "err";
+  std::printf("| family | query | pairs | ref pairs | median ns | p99 ns | median %s | max %s | "
+              "max err vs fcl_disk | / disk |\n",
+              err_label, err_label);
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  const std::size_t all_row = families.size();
+  for (std::size_t f = 0; f < table.size(); ++f) {
+    const PenSummary& disk = table[f][kDiskQuery];
+    for (std::size_t q = 0; q < num_queries; ++q) {
+      const PenSummary& s = table[f][q];
+      if (!s.measured) {
+        if (f == all_row || skipped_everywhere[q].empty())
+          std::printf("| %s | %s | - | - | %s | | | | | |\n", s.family.c_str(),
+                      s.query.c_str(), f == all_row ? "skipped in every family" : "skipped");
+        continue;
+      }
+      char ratio[32] = "-";
+      if (disk.measured && s.query != disk.query)
+        std::snprintf(ratio, sizeof ratio, "%.1fx", s.median_ns / disk.median_ns);
+      std::string pairs = std::to_string(s.pairs);
+      if (s.threw > 0) pairs += " (" + std::to_string(s.threw) + " threw)";
+      std::printf("| %s | %s | %s | %zu | %s | %s | %s | %s | %s | %s |\n", s.family.c_str(),
+                  s.query.c_str(), pairs.c_str(), s.referenced, formatNs(s.median_ns).c_str(),
+                  formatNs(s.p99_ns).c_str(), formatErr(s.median_err).c_str(),
+                  formatErr(s.max_err).c_str(), formatErr(s.max_err_vs_disk).c_str(), ratio);
+    }
+  }
+
+  // Headline: pooled medians, disk against the fastest EPA.
+  const std::vector<PenSummary>& all = table[families.size()];
+  auto fastest = [&](PenKind kind) -> const PenSummary* {
+    const PenSummary* best = nullptr;
+    for (std::size_t q = 0; q < num_queries; ++q)
+      if (queries[q].kind == kind && all[q].measured &&
+          (!best || all[q].median_ns < best->median_ns))
+        best = &all[q];
+    return best;
+  };
+  const PenSummary& disk_all = all[kDiskQuery];
+  std::printf("\n## Headline (medians pooled over all pairs, one run)\n\n");
+  if (const PenSummary* epa = fastest(PenKind::epa_libccd)) {
+    std::printf("- disk %s ns vs fastest libccd EPA (%s) %s ns: EPA / disk = %.0fx; max err "
+                "disk %s, %s %s\n",
+                formatNs(disk_all.median_ns).c_str(), epa->query.c_str(),
+                formatNs(epa->median_ns).c_str(), epa->median_ns / disk_all.median_ns,
+                formatErr(disk_all.max_err).c_str(), epa->query.c_str(),
+                formatErr(epa->max_err).c_str());
+  } else {
+    std::printf("- no libccd EPA query finished on any family\n");
+  }
+  if (const PenSummary* indep = fastest(PenKind::indep)) {
+    std::printf("- fastest indep (%s) %s ns: indep / disk = %.0fx; max err %s\n",
+                indep->query.c_str(), formatNs(indep->median_ns).c_str(),
+                indep->median_ns / disk_all.median_ns, formatErr(indep->max_err).c_str());
+  }
+  std::printf("- hook overhead: disk %s ns vs disk_direct %s ns (the hook also runs the "
+              "distance solver and intersectDisks before diskPenetration)\n",
+              formatNs(disk_all.median_ns).c_str(), formatNs(all[kDiskDirectQuery].median_ns).c_str());
+  std::printf("- fcl_disk vs reference on %zu pairs: %zu above the %.0e bound\n",
+              referenced_total, above_bound.size(), kPenBound);
+  for (std::size_t i = 0; i < above_bound.size() && i < 12; ++i)
+    std::printf("  - %s\n", above_bound[i].c_str());
+  if (worst_known_gap >= 0)
+    std::printf("- reference vs closed-form PD of the construction (coplanar, coaxial, "
+                "nearly_touching/face): max %s of the scene (%s)\n",
+                formatErr(worst_known_gap).c_str(), worst_known_case.c_str());
+
+  // Notes: skipped kinds, short families, exceptions, pairs reported apart.
+  bool any_note = false;
+  auto note = [&](const std::string& text) {
+    if (!any_note) std::printf("\nNotes:\n");
+    any_note = true;
+    std::printf("- %s\n", text.c_str());
+  };
+  for (std::size_t q = 0; q < num_queries; ++q)
+    if (!skipped_everywhere[q].empty())
+      note(queries[q].name + ": not measured in any family (probed in a child first): " +
+           skipped_everywhere[q]);
+  for (std::size_t f = 0; f < families.size(); ++f) {
+    if (generated[f] < n)
+      note(family_names[f] + ": only " + std::to_string(generated[f]) + " of " +
+           std::to_string(n) + " pairs generated");
+    for (std::size_t q = 0; q < num_queries; ++q) {
+      if (!skipped[f][q].empty() && skipped_everywhere[q].empty())
+        note(family_names[f] + " / " + queries[q].name + ": not measured (probed in a child "
+             "first): " + skipped[f][q]);
+      const PenSummary& s = table[f][q];
+      if (s.threw > 0)
+        note(family_names[f] + " / " + queries[q].name + ": threw on " +
+             std::to_string(s.threw) + " of " + std::to_string(s.pairs + s.threw) +
+             " pairs (not timed, no error), first " + s.threw_example);
+      if (s.reported_apart > 0)
+        note(family_names[f] + " / " + queries[q].name + ": " +
+             std::to_string(s.reported_apart) + " of " + std::to_string(s.pairs) +
+             " intersecting pairs reported apart (min_distance > 1e-12 of the scene)");
+    }
+  }
+
+  // CSV: one row per (query, family), "all" last per query.
+  std::error_code ec;
+  std::filesystem::create_directories(options.out_dir, ec);
+  const std::string csv_path = options.out_dir + "/penetration.csv";
+  {
+    std::ofstream csv(csv_path);
+    if (!csv) {
+      std::fprintf(stderr, "fcl_disk_report: cannot write %s\n", csv_path.c_str());
+      return 1;
+    }
+    csv << "query,path,family,pairs,referenced_pairs,median_ns,p99_ns,median_rel_err,"
+           "max_rel_err,worst_case,max_rel_err_vs_fcl_disk,over_disk,reported_apart,threw,"
+           "threw_first,slowest_ns,slowest_case,reference,not_measured\n";
+    const char* reference = "reference_penetration";
+    for (std::size_t q = 0; q < num_queries; ++q) {
+      for (std::size_t f = 0; f < table.size(); ++f) {
+        const PenSummary& s = table[f][q];
+        const PenSummary& disk = table[f][kDiskQuery];
+        csv << s.query << ',' << s.path << ',' << s.family << ',' << s.pairs << ','
+            << s.referenced << ',' << csvNumber(s.median_ns) << ',' << csvNumber(s.p99_ns) << ','
+            << csvNumber(s.median_err) << ',' << csvNumber(s.max_err) << ',' << s.worst_case
+            << ',' << csvNumber(s.max_err_vs_disk) << ','
+            << csvNumber(s.measured && disk.measured ? s.median_ns / disk.median_ns
+                                                     : std::nan(""))
+            << ',' << s.reported_apart << ',' << s.threw << ',' << csvQuoted(s.threw_example)
+            << ',' << csvNumber(s.slowest_ns) << ',' << s.slowest_case << ',' << reference << ','
+            << csvQuoted(s.skip_reason) << '\n';
+      }
+    }
+  }
+  std::printf("\nwrote %s\n", csv_path.c_str());
+  return 0;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -919,7 +1514,14 @@ int main(int argc, char** argv) {
   const std::size_t num_solvers = solvers.size();
   const auto& families = fam::allFamilies();
   const double clock_ns = measureClockOverhead();
-  if (options.shapes_only) return runShapeSection(options, clock_ns);
+  // --shapes-only / --penetration-only: exactly the sections named.
+  if (options.shapes_only || options.penetration_only) {
+    if (options.shapes_only) {
+      const int status = runShapeSection(options, clock_ns);
+      if (status != 0) return status;
+    }
+    return options.penetration_only ? runPenetrationSection(options, clock_ns) : 0;
+  }
 
   // 1. Family by family: pairs, references, then every solver on every pair,
   //    interleaved; the FCL objects are freed before the next family.
@@ -1128,6 +1730,10 @@ int main(int argc, char** argv) {
 
   // 8. The plot.
   if (options.plot && !runPlot(FCL_DISK_PLOT_SCRIPT, csv_path, png_path)) return 1;
-  if (options.shapes) return runShapeSection(options, clock_ns);
+  if (options.shapes) {
+    const int status = runShapeSection(options, clock_ns);
+    if (status != 0) return status;
+  }
+  if (options.penetration) return runPenetrationSection(options, clock_ns);
   return 0;
 }

@@ -37,20 +37,39 @@ constexpr double kOnAxisTolerance = 1e-6;
 constexpr double kQVanishes = 1e-12;
 constexpr int kFixedAnglesWhenQVanishes = 64;
 
-/// Two rim points closer than this (scene sizes) give no direction b - a; the
-/// candidates are then the normals +-t1 x t2 of both tangents.
+/// Two rim points closer than this (scene sizes) give no direction b - a, and
+/// tangents whose cross product is shorter than this no direction t1 x t2
+/// (each known to ~1e-16: the direction to ~1e-7, an O(1e-14) error in F).
 constexpr double kCoincidentRimPoints = 1e-9;
+constexpr double kParallelTangents = 1e-9;
 
 /// The witness of a disk is its support point along +-w unless |P w| is below
 /// this (w within ~1e-9 rad of the disk's normal: the support point is then a
 /// face point, fixed by the other disk's witness).
 constexpr double kAlongNormal = 1e-9;
 
+/// A rim pair (b, a) serves as the witnesses when |b - a - PD w| is below this
+/// (scene sizes): 10x inside the 1e-12 promise for the witnesses, far above
+/// the rounding of b, a and PD and the square of a root's error.
+constexpr double kWitnessResidual = 1e-13;
+
+/// The best rim pair is polished by at most kPolishIterations Newton steps,
+/// stopped at a step (radians, summed over both angles) below
+/// kPolishConverged (the resolution of an angle) or above kMaxPolishStep (the
+/// pair was not next to a regular critical pair: kept as it is). The polished
+/// pair is kept when its F exceeds the best by at most kPolishSlack (scene
+/// sizes: rounding; both values are upper bounds on PD).
+constexpr int kPolishIterations = 4;
+constexpr double kPolishConverged = 1e-15;
+constexpr double kMaxPolishStep = 0.1;
+constexpr double kPolishSlack = 1e-15;
+
 /// Root polishing stops at a Newton step (or bracket) this small in t (t lies
-/// in [-1, 1]): Newton converges quadratically, so the root is then known far
-/// beyond double resolution for a simple root, and F, stationary there, moves
-/// by ~1e-24; or after kMaxRootIterations steps (bisection alone needs ~40).
-constexpr double kRootTolerance = 1e-12;
+/// in [-1, 1]): 8 ulps of 1, the resolution of t, so the rim points and their
+/// tangents are as accurate as double allows (the witnesses are support
+/// points along the direction they give); or after kMaxRootIterations steps
+/// (bisection alone needs ~50).
+constexpr double kRootTolerance = 8 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxRootIterations = 100;
 
 // ---------------------------------------------------------------------------
@@ -296,12 +315,18 @@ class PenetrationSearch {
       : c_(pair.c), u_(pair.R.col(0)), v_(pair.R.col(1)), r1_(pair.r1), r2_(pair.r2) {}
 
   /// F(w) = -c.w + r1 |P1 w| + r2 |P2 w|: translating disk 2 by t w separates
-  /// the disks iff t > F(w). Keeps the smallest.
-  void consider(const Vec3& w) {
+  /// the disks for every t > F(w). Keeps the smallest, with the rim points
+  /// (b of disk 1, a of disk 2) the direction came from, if any.
+  void consider(const Vec3& w, const Vec3* b = nullptr, const Vec3* a = nullptr) {
     const double p1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
-    const double a = u_.dot(w), b = v_.dot(w);
-    const double value = -c_.dot(w) + r1_ * p1 + r2_ * std::sqrt(a * a + b * b);
-    if (value < best_value_) best_value_ = value, best_w_ = w;
+    const double in_plane2_u = u_.dot(w), in_plane2_v = v_.dot(w);
+    const double value = -c_.dot(w) + r1_ * p1 +
+                         r2_ * std::sqrt(in_plane2_u * in_plane2_u + in_plane2_v * in_plane2_v);
+    if (!(value < best_.value)) return;
+    best_.value = value;
+    best_.w = w;
+    best_.from_rims = b != nullptr;
+    if (b) best_.b = *b, best_.a = *a;
   }
 
   /// The candidates of rim angle theta of disk 2 (given as cos, sin): its rim
@@ -332,46 +357,104 @@ class PenetrationSearch {
     }
   }
 
+  /// A critical pair of the rims (b on rim 1, a on rim 2): b - a is normal to
+  /// both tangents, so the directions are +-(b - a) / |b - a| (+ for an
+  /// overlap, b - a = PD w; - for disks apart, where min F = -d) and +-t1 x t2,
+  /// the same line without the cancellation of b - a for nearby rim points.
+  /// Where the rims meet with parallel tangents (t1 x t2 = 0, b = a), a
+  /// separating direction lies in both normal cones, {alpha n1 + beta e1,
+  /// beta >= 0} and minus disk 2's, {alpha n2 - beta e2}: in a sector of the
+  /// plane normal to the tangents whose edges include e1 and -e2 (the normals
+  /// are the kinks, considered already).
   void considerPair(const Vec3& b, const Vec3& a, const Vec3& t2, const Vec3& e2) {
     const Vec3 gap = b - a;
     const double length = gap.norm();
     if (length > kCoincidentRimPoints) {
-      consider(gap / length);
-      return;
+      consider(gap / length, &b, &a);
+      consider(-gap / length, &b, &a);
     }
-    // The rims meet at b = a: a separating direction lies in both normal
-    // cones there, {alpha n1 + beta e1, beta >= 0} and minus disk 2's,
-    // {alpha n2 - beta e2}: along t1 x t2, or (parallel tangents: a sector of
-    // the plane normal to them) at one of the cones' edges, e1 or -e2 (the
-    // normals are the kinks, already considered).
     const Vec3 e1 = b / r1_;
     const Vec3 t1(-e1.y(), e1.x(), 0.0);
     const Vec3 normal = t1.cross(t2);
     const double normal_length = normal.norm();
-    if (normal_length > 0.0) {
-      consider(normal / normal_length);
-      consider(-normal / normal_length);
+    if (normal_length > kParallelTangents) {
+      consider(normal / normal_length, &b, &a);
+      consider(-normal / normal_length, &b, &a);
+    } else if (length <= kCoincidentRimPoints) {
+      consider(e1, &b, &a);
+      consider(-e2, &b, &a);
     }
-    consider(e1);
-    consider(-e2);
   }
 
-  double bestValue() const { return best_value_; }
-  const Vec3& bestDirection() const { return best_w_; }
+  /// Newton's method on the critical-pair equations of the rims,
+  /// d/dphi |b - a|^2 = d/dtheta |b - a|^2 = 0, from the best rim pair: a root
+  /// of Q is known only as well as Q's conditioning allows (to ~sqrt(eps) at a
+  /// near-double root), and the witnesses need b - a along w to rounding. The
+  /// polished pair replaces the best when its F is as small, to rounding.
+  void polishBestRimPair() {
+    if (!best_.from_rims) return;
+    double phi = std::atan2(best_.b.y(), best_.b.x());
+    const Vec3 e2_start = best_.a - c_;
+    double theta = std::atan2(e2_start.dot(v_), e2_start.dot(u_));
+    for (int i = 0; i < kPolishIterations; ++i) {
+      const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+      const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
+      const Vec3 b(r1_ * cos_phi, r1_ * sin_phi, 0.0), db(-r1_ * sin_phi, r1_ * cos_phi, 0.0);
+      const Vec3 e2 = cos_theta * u_ + sin_theta * v_;
+      const Vec3 a = c_ + r2_ * e2, da = r2_ * (cos_theta * v_ - sin_theta * u_);
+      const Vec3 g = b - a;
+      const double grad_phi = g.dot(db), grad_theta = -g.dot(da);
+      const double h_pp = db.dot(db) - g.dot(b), h_tt = da.dot(da) + r2_ * g.dot(e2);
+      const double h_pt = -db.dot(da);
+      const double det = h_pp * h_tt - h_pt * h_pt;
+      if (!(std::abs(det) > 0.0)) break;
+      const double step_phi = -(h_tt * grad_phi - h_pt * grad_theta) / det;
+      const double step_theta = -(h_pp * grad_theta - h_pt * grad_phi) / det;
+      const double step = std::abs(step_phi) + std::abs(step_theta);
+      if (!(step < kMaxPolishStep)) break;  // not next to a regular critical pair
+      phi += step_phi;
+      theta += step_theta;
+      if (step < kPolishConverged) break;
+    }
+    const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
+    const Vec3 e2 = cos_theta * u_ + sin_theta * v_;
+    const Vec3 a = c_ + r2_ * e2;
+    const Vec3 b(r1_ * std::cos(phi), r1_ * std::sin(phi), 0.0);
+    const Best before = best_;
+    best_.value = std::numeric_limits<double>::infinity();
+    considerPair(b, a, -sin_theta * u_ + cos_theta * v_, e2);
+    if (!(best_.value <= before.value + kPolishSlack)) best_ = before;
+  }
+
+  struct Best {
+    double value = std::numeric_limits<double>::infinity();
+    Vec3 w = Vec3::UnitZ();
+    bool from_rims = false;  ///< w came from the rim pair (b, a), not a kink
+    Vec3 b = Vec3::Zero(), a = Vec3::Zero();
+  };
+  const Best& best() const { return best_; }
 
  private:
   Vec3 c_, u_, v_;
   double r1_, r2_;
-  double best_value_ = std::numeric_limits<double>::infinity();
-  Vec3 best_w_ = Vec3::UnitZ();
+  Best best_;
 };
 
-/// The penetration with its witnesses: the support point of the disk whose
-/// plane w is farther from normal to (a rim point; a face point when w is its
-/// normal), the other one PD * w away.
-Penetration withWitnesses(const PairInFrame1& pair, double depth, const Vec3& w) {
-  Penetration out{depth, w, Vec3::Zero(), Vec3::Zero()};
-  const Vec3 n2 = pair.R.col(2);
+/// The penetration with its witnesses. From a rim pair: its two rim points
+/// (on the disks exactly, and b - a = PD w up to the square of the root's
+/// error, b - a being stationary there). Otherwise (a kink): the support point of the
+/// disk whose plane w is farther from normal to (a rim point), the other one
+/// PD * w away (on the face of the disk w is normal to).
+Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Best& best) {
+  const Vec3& w = best.w;
+  Penetration out{best.value, w, Vec3::Zero(), Vec3::Zero()};
+  // The rim pair is the support pair along w only if b - a = PD w; a pair
+  // whose t1 x t2 merely lies along w is not.
+  if (best.from_rims && (best.b - best.a - best.value * w).norm() <= kWitnessResidual) {
+    out.p1 = best.b;
+    out.p2 = best.a;
+    return out;
+  }
   const double in_plane1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
   const double in_plane2 = pair.inPlane2(w);
   if (std::max(in_plane1, in_plane2) < kAlongNormal) {
@@ -379,11 +462,12 @@ Penetration withWitnesses(const PairInFrame1& pair, double depth, const Vec3& w)
     const auto common = internal::commonPoint(pair);
     out.p1 = out.p2 = common ? *common : Vec3(0.0, 0.0, 0.5 * pair.c.z());
   } else if (in_plane2 >= in_plane1) {
-    out.p2 = pair.c - (pair.r2 / in_plane2) * (w - n2.dot(w) * n2);
-    out.p1 = out.p2 + depth * w;
+    const Vec3 P2w = pair.R.col(0).dot(w) * pair.R.col(0) + pair.R.col(1).dot(w) * pair.R.col(1);
+    out.p2 = pair.c - (pair.r2 / in_plane2) * P2w;
+    out.p1 = out.p2 + best.value * w;
   } else {
     out.p1 = Vec3(w.x(), w.y(), 0.0) * (pair.r1 / in_plane1);
-    out.p2 = out.p1 - depth * w;
+    out.p2 = out.p1 - best.value * w;
   }
   return out;
 }
@@ -391,7 +475,9 @@ Penetration withWitnesses(const PairInFrame1& pair, double depth, const Vec3& w)
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
 Penetration penetrationInFrame1(const PairInFrame1& pair) {
   PenetrationSearch search(pair);
-  const Vec3 n2 = pair.R.col(2);
+  // Disk 2's kinks are where |P2 w| = sqrt((u.w)^2 + (v.w)^2) vanishes, along
+  // u x v: R's third column only to within an accepted rotation's defect.
+  const Vec3 n2 = pair.R.col(0).cross(pair.R.col(1)).normalized();
   // The kinks first: their order is the documented tie-break.
   search.consider(Vec3::UnitZ());
   search.consider(-Vec3::UnitZ());
@@ -428,7 +514,8 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
       const double angle = 2 * kPi * k / kFixedAnglesWhenQVanishes;
       search.considerRimAngle(std::cos(angle), std::sin(angle));
     }
-    return withWitnesses(pair, search.bestValue(), search.bestDirection());
+    search.polishBestRimPair();
+    return withWitnesses(pair, search.best());
   }
 
   // Candidate angles: the roots of Q and of Q' (an extremum of Q marks a
@@ -451,7 +538,8 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
     search.considerRimAngle(std::cos(angle), std::sin(angle));
   }
 
-  return withWitnesses(pair, search.bestValue(), search.bestDirection());
+  search.polishBestRimPair();
+  return withWitnesses(pair, search.best());
 }
 
 template <typename S>

@@ -31,9 +31,10 @@ struct DiskSignedDistanceResult {
 };
 
 /// Penetration depth of two disks that share a point: the minimum over unit w
-/// of F(w) = (c1 - c2).w + r1 |P1 w| + r2 |P2 w| (translating disk 2 by t w
-/// separates the disks iff t > F(w)), its minimiser w (`direction`) and the
-/// witness points, as in DiskSignedDistanceResult (signed_distance = -PD).
+/// of F(w) = (c1 - c2).w + r1 |P1 w| + r2 |P2 w|, the support function of the
+/// Minkowski difference K1 - K2 (translating disk 2 by t w separates the disks
+/// for every t > F(w)), its minimiser w (`direction`) and the witness points,
+/// as in DiskSignedDistanceResult (signed_distance = -PD).
 ///
 /// Frames, units and pose convention as in exactDiskDistance(). Arithmetic in
 /// double, in disk 1's frame relative to c1, lengths divided by the scene size
@@ -47,13 +48,16 @@ struct DiskSignedDistanceResult {
 /// rim angle theta is a root of the degree-4 trigonometric polynomial
 /// Q(theta) = rho^2 L^2 - r1^2 K^2 (rho: distance of a from disk 1's axis;
 /// L, K: halves of the derivatives of |a|^2 and rho^2). Every real root of Q is
-/// found (two charts theta = 2 atan t and pi + 2 atan t, t in [-1, 1]; roots of
-/// the degree-8 polynomial bracketed between the roots of its derivatives), and
-/// F is evaluated at the directions each root gives, at the four kinks, at the
-/// extrema of Q (a double root may not change sign in rounding) and at eight
-/// fixed angles (Q vanishes identically only on symmetric pairs). Every value
-/// F(w) is an upper bound on PD, and the candidate set contains a global
-/// minimiser, so the smallest value is PD (a proof, not a local search).
+/// found (two charts theta = 2 atan t and pi + 2 atan t, t in [-1, 1]; the
+/// degree-8 polynomial's roots isolated by Bernstein subdivision, Descartes'
+/// rule, and polished by Newton steps within their brackets), and F is
+/// evaluated at the directions each root gives (+-(b - a), +-t1 x t2), at the
+/// four kinks, at the roots of Q' (a double root may not change sign in
+/// rounding) and at eight fixed angles; when Q vanishes identically (coaxial
+/// disks, Villarceau pairs) at 64 angles. Every value F(w) is an upper bound on
+/// PD, and the candidate set contains a global minimiser, so the smallest value
+/// is PD (a proof, not a local search). The best rim pair is then polished by
+/// Newton's method on the two critical-pair equations.
 ///
 /// Guarantee (double): |PD - PD_true| <= 1e-12 * (r1 + r2 + |c1 - c2|), tested
 /// against an independent long-double reference; p_W1 on disk 1 and p_W2 on disk
