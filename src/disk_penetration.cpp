@@ -71,6 +71,10 @@ constexpr double kPolishSlack = 1e-15;
 /// (bisection alone needs ~50).
 constexpr double kRootTolerance = 8 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxRootIterations = 100;
+/// Horner's scheme for a degree-8 polynomial at |t| <= 1 rounds by at most
+/// ~2 * 8 ulps of sum |p_j|: 32 ulps; once |p(t)| is below that, t is the root
+/// to the polynomial's own resolution and further steps only chase rounding.
+constexpr double kEvaluationRounding = 32 * std::numeric_limits<double>::epsilon();
 
 // ---------------------------------------------------------------------------
 // Trigonometric polynomials of degree 4 in real form:
@@ -109,10 +113,17 @@ struct TrigPolynomial {
     }
     return f;
   }
-  TrigPolynomial derivative() const {
-    TrigPolynomial f;
-    for (int k = 1; k <= kTrigDegree; ++k) f.C[k] = k * S[k], f.S[k] = -k * C[k];
-    return f;
+};
+
+/// cos and sin of the N angles 2 pi k / N.
+template <int N>
+struct AngleTable {
+  std::array<double, N> cos, sin;
+  AngleTable() {
+    for (int k = 0; k < N; ++k) {
+      cos[k] = std::cos(2 * kPi * k / N);
+      sin[k] = std::sin(2 * kPi * k / N);
+    }
   }
 };
 
@@ -175,9 +186,13 @@ double rootInBracket(const double* p, const double* dp, int degree, double lo, d
   const double p_hi = evaluate(p, degree, hi);
   double t = p_hi != p_lo ? lo - p_lo * (hi - lo) / (p_hi - p_lo) : 0.5 * (lo + hi);
   if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  // Horner's rounding bound at |t| <= 1: a value below it carries no sign.
+  double magnitude = 0.0;
+  for (int j = 0; j <= degree; ++j) magnitude += std::abs(p[j]);
+  const double value_at_rounding = kEvaluationRounding * magnitude;
   for (int i = 0; i < kMaxRootIterations && hi - lo > kRootTolerance; ++i) {
     const double value = evaluate(p, degree, t);
-    if (value == 0.0) return t;
+    if (std::abs(value) <= value_at_rounding) return t;
     if ((value < 0) == (p_lo < 0)) {
       lo = t;
       p_lo = value;
@@ -212,14 +227,23 @@ Bernstein toBernstein(const Polynomial& p) {
     q[0] = p[j] - q[0];
   }
   // b_i = sum_{j <= i} binom(i, j) / binom(8, j) q_j.
-  static constexpr double kBinom8[kPolyDegree + 1] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
+  struct Weights {
+    double w[kPolyDegree + 1][kPolyDegree + 1] = {};
+    Weights() {
+      static constexpr double kBinom8[kPolyDegree + 1] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
+      for (int i = 0; i <= kPolyDegree; ++i) {
+        double binom_ij = 1;  // binom(i, j)
+        for (int j = 0; j <= i; ++j) {
+          w[i][j] = binom_ij / kBinom8[j];
+          binom_ij = binom_ij * (i - j) / (j + 1);
+        }
+      }
+    }
+  };
+  static const Weights weights;
   Bernstein b{};
   for (int i = 0; i <= kPolyDegree; ++i) {
-    double binom_ij = 1;  // binom(i, j)
-    for (int j = 0; j <= i; ++j) {
-      b[i] += binom_ij / kBinom8[j] * q[j];
-      binom_ij = binom_ij * (i - j) / (j + 1);
-    }
+    for (int j = 0; j <= i; ++j) b[i] += weights.w[i][j] * q[j];
   }
   return b;
 }
@@ -235,11 +259,24 @@ int signChanges(const Bernstein& b) {
   return changes;
 }
 
-/// Subdivisions of [-1, 1] before an interval whose coefficients still change
-/// sign more than once is taken as one candidate (its midpoint): a cluster of
-/// roots (a double root split by rounding) 2^-40 wide in t, where p's
-/// candidates differ by far less than the rounding of F.
-constexpr int kMaxSubdivisions = 40;
+/// Subdivisions of [-1, 1] before an undecided interval (more than one sign
+/// change, or none but a coefficient within the noise: a double root, or a
+/// pair of roots rounding may merge) is taken as one candidate, its midpoint:
+/// 2^-24 wide in t, within 6e-8 of the root(s), where F, stationary, is off by
+/// ~1e-15 of the scene, and the best candidate is then polished anyway.
+constexpr int kMaxSubdivisions = 24;
+
+/// Bernstein coefficients within this many times the size of Q's terms (see
+/// kQVanishes) of zero may be rounding: ~5e4 ulps, far above the rounding the
+/// sampling, the Fourier transform and the change of basis leave (~1e3 ulps of
+/// the chart polynomial, which is up to 16 Q), far below any coefficient a
+/// clear sign carries.
+constexpr double kBernsteinNoise = 1e-11;
+
+/// Candidates one chart can yield: at most 8 roots and 7 extrema, plus one
+/// midpoint per undecided leaf (at most kMaxIntervals / kMaxSubdivisions * 2)
+/// and per interval left when the budget runs out (at most the stack's depth).
+constexpr int kMaxChartCandidates = 96;
 
 /// At most this many intervals are examined per polynomial (a degree-8
 /// polynomial with simple roots needs a few dozen); past it, each interval
@@ -247,41 +284,84 @@ constexpr int kMaxSubdivisions = 40;
 /// rounding scatters sign changes through nearly vanishing coefficients.
 constexpr int kMaxIntervals = 256;
 
-/// Real roots of p (monomial basis) in [-1, 1], appended to `out` (at most
-/// `capacity`): Bernstein subdivision (de Casteljau halves) until each interval
-/// has no sign change (no root) or one (one root, bracketed: Newton within the
-/// bracket), or is kMaxSubdivisions deep (its midpoint).
-int rootsOnChart(const Polynomial& p, double* out, int capacity) {
-  Polynomial dp{};
+/// Real roots of p (monomial basis) in [-1, 1], written to `out` (at most
+/// kMaxChartCandidates), by Bernstein subdivision (de Casteljau halves). An
+/// interval is decided when its coefficients show
+/// - no sign change and none within `noise` of zero: |p| > noise, no root;
+/// - one sign change between its ends: one root, bracketed and polished;
+/// - otherwise, when the coefficients of p' (n (b_{i+1} - b_i)) change sign at
+///   most once: p has at most one extremum there, found by Newton within its
+///   bracket and taken as a candidate (it marks a double root, or two roots
+///   rounding may merge), and p is monotone on either side of it, so each side
+///   holds a root exactly when p changes sign over it.
+/// Undecided intervals are halved, down to kMaxSubdivisions (then the midpoint
+/// is the candidate), within a budget of kMaxIntervals.
+int rootsOnChart(const Polynomial& p, double noise, double* out) {
+  Polynomial dp{}, ddp{};
   for (int j = 0; j < kPolyDegree; ++j) dp[j] = (j + 1) * p[j + 1];
+  for (int j = 0; j + 1 < kPolyDegree; ++j) ddp[j] = (j + 1) * dp[j + 1];
+  int count = 0;
+  const auto add = [&](double t) {
+    if (count < kMaxChartCandidates) out[count++] = t;
+  };
+  // The root of p in [lo, hi] if p changes sign over it (values given).
+  const auto rootIfSignChange = [&](double lo, double hi, double p_lo, double p_hi) {
+    if (p_lo == 0.0) {
+      add(lo);
+    } else if (p_hi != 0.0 && (p_lo < 0) != (p_hi < 0)) {
+      add(rootInBracket(p.data(), dp.data(), kPolyDegree, lo, hi, p_lo));
+    }
+  };
   struct Interval {
     Bernstein b;
     double lo, hi;
     int depth;
   };
   std::array<Interval, kMaxSubdivisions + 2> stack;
-  int size = 0, count = 0, examined = 0;
+  int size = 0, examined = 0;
   stack[size++] = {toBernstein(p), -1.0, 1.0, 0};
-  while (size > 0 && count < capacity) {
+  while (size > 0) {
     const Interval interval = stack[--size];
+    const double mid = 0.5 * (interval.lo + interval.hi);
     if (++examined > kMaxIntervals) {
-      out[count++] = 0.5 * (interval.lo + interval.hi);
+      add(mid);
       continue;
     }
     const Bernstein& b = interval.b;
     const int changes = signChanges(b);
     if (changes == 0) {
-      if (b[0] == 0.0) out[count++] = interval.lo;
+      double smallest = std::abs(b[0]);
+      for (const double x : b) smallest = std::min(smallest, std::abs(x));
+      if (smallest > noise) continue;  // |p| > noise on the interval: no root
+    }
+    if (changes == 1 && b[0] != 0.0 && b[kPolyDegree] != 0.0) {  // the ends differ in sign
+      rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
       continue;
     }
-    if (changes == 1 && b[0] != 0.0 && b[kPolyDegree] != 0.0) {
-      out[count++] = rootInBracket(p.data(), dp.data(), kPolyDegree, interval.lo, interval.hi,
-                                   evaluate(p.data(), kPolyDegree, interval.lo));
+    std::array<double, kPolyDegree> derivative;  // p' in the Bernstein basis, up to a factor
+    for (int i = 0; i < kPolyDegree; ++i) derivative[i] = b[i + 1] - b[i];
+    int derivative_changes = 0;
+    double last = 0.0;
+    for (const double x : derivative) {
+      if (x == 0.0) continue;
+      if (last != 0.0 && (x < 0) != (last < 0)) ++derivative_changes;
+      last = x;
+    }
+    if (derivative_changes == 0) {  // p monotone: a root iff it changes sign
+      rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
       continue;
     }
-    const double mid = 0.5 * (interval.lo + interval.hi);
+    if (derivative_changes == 1 && derivative[0] != 0.0 && derivative[kPolyDegree - 1] != 0.0) {
+      const double extremum = rootInBracket(dp.data(), ddp.data(), kPolyDegree - 1, interval.lo,
+                                            interval.hi, derivative[0]);
+      add(extremum);
+      const double p_extremum = evaluate(p.data(), kPolyDegree, extremum);
+      rootIfSignChange(interval.lo, extremum, b[0], p_extremum);
+      if (p_extremum != 0.0) rootIfSignChange(extremum, interval.hi, p_extremum, b[kPolyDegree]);
+      continue;
+    }
     if (interval.depth >= kMaxSubdivisions || size + 2 > int(stack.size())) {
-      out[count++] = mid;
+      add(mid);
       continue;
     }
     // de Casteljau at s = 1/2: the left half's coefficients are the first
@@ -393,15 +473,18 @@ class PenetrationSearch {
   /// polished pair replaces the best when its F is as small, to rounding.
   void polishBestRimPair() {
     if (!best_.from_rims) return;
-    double phi = std::atan2(best_.b.y(), best_.b.x());
+    // The angles as unit vectors (cos, sin), turned by each Newton step and
+    // renormalised: exact to third order in the step, no sin/cos per step.
+    Vec2 phi = Vec2(best_.b.x(), best_.b.y()).normalized();
     const Vec3 e2_start = best_.a - c_;
-    double theta = std::atan2(e2_start.dot(v_), e2_start.dot(u_));
+    Vec2 theta = Vec2(e2_start.dot(u_), e2_start.dot(v_)).normalized();
+    const auto turn = [](Vec2& angle, double step) {
+      angle = Vec2(angle.x() - step * angle.y(), angle.y() + step * angle.x()).normalized();
+    };
     for (int i = 0; i < kPolishIterations; ++i) {
-      const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
-      const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
-      const Vec3 b(r1_ * cos_phi, r1_ * sin_phi, 0.0), db(-r1_ * sin_phi, r1_ * cos_phi, 0.0);
-      const Vec3 e2 = cos_theta * u_ + sin_theta * v_;
-      const Vec3 a = c_ + r2_ * e2, da = r2_ * (cos_theta * v_ - sin_theta * u_);
+      const Vec3 b(r1_ * phi.x(), r1_ * phi.y(), 0.0), db(-r1_ * phi.y(), r1_ * phi.x(), 0.0);
+      const Vec3 e2 = theta.x() * u_ + theta.y() * v_;
+      const Vec3 a = c_ + r2_ * e2, da = r2_ * (theta.x() * v_ - theta.y() * u_);
       const Vec3 g = b - a;
       const double grad_phi = g.dot(db), grad_theta = -g.dot(da);
       const double h_pp = db.dot(db) - g.dot(b), h_tt = da.dot(da) + r2_ * g.dot(e2);
@@ -412,17 +495,16 @@ class PenetrationSearch {
       const double step_theta = -(h_pp * grad_theta - h_pt * grad_phi) / det;
       const double step = std::abs(step_phi) + std::abs(step_theta);
       if (!(step < kMaxPolishStep)) break;  // not next to a regular critical pair
-      phi += step_phi;
-      theta += step_theta;
+      turn(phi, step_phi);
+      turn(theta, step_theta);
       if (step < kPolishConverged) break;
     }
-    const double cos_theta = std::cos(theta), sin_theta = std::sin(theta);
-    const Vec3 e2 = cos_theta * u_ + sin_theta * v_;
+    const Vec3 e2 = theta.x() * u_ + theta.y() * v_;
     const Vec3 a = c_ + r2_ * e2;
-    const Vec3 b(r1_ * std::cos(phi), r1_ * std::sin(phi), 0.0);
+    const Vec3 b(r1_ * phi.x(), r1_ * phi.y(), 0.0);
     const Best before = best_;
     best_.value = std::numeric_limits<double>::infinity();
-    considerPair(b, a, -sin_theta * u_ + cos_theta * v_, e2);
+    considerPair(b, a, theta.x() * v_ - theta.y() * u_, e2);
     if (!(best_.value <= before.value + kPolishSlack)) best_ = before;
   }
 
@@ -490,9 +572,9 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
   const double r1 = pair.r1, r2 = pair.r2;
   std::array<double, kSamples> samples;
   double terms = 0.0;  // the size of Q's two terms, for its rounding
+  static const AngleTable<kSamples> sample_angles;
   for (int j = 0; j < kSamples; ++j) {
-    const double angle = 2 * kPi * j / kSamples;
-    const double cos_theta = std::cos(angle), sin_theta = std::sin(angle);
+    const double cos_theta = sample_angles.cos[j], sin_theta = sample_angles.sin[j];
     const Vec3 a = c + r2 * (cos_theta * u + sin_theta * v);   // rim point
     const Vec3 da = r2 * (cos_theta * v - sin_theta * u);      // its derivative
     const double rho2 = a.x() * a.x() + a.y() * a.y();
@@ -510,32 +592,24 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
     // Q = 0 to rounding: every rim angle is critical (rims at a constant
     // distance: coaxial disks, or rim 2 a Villarceau circle of a torus about
     // rim 1); the candidates are kFixedAnglesWhenQVanishes angles.
+    static const AngleTable<kFixedAnglesWhenQVanishes> angles;
     for (int k = 0; k < kFixedAnglesWhenQVanishes; ++k) {
-      const double angle = 2 * kPi * k / kFixedAnglesWhenQVanishes;
-      search.considerRimAngle(std::cos(angle), std::sin(angle));
+      search.considerRimAngle(angles.cos[k], angles.sin[k]);
     }
     search.polishBestRimPair();
     return withWitnesses(pair, search.best());
   }
 
-  // Candidate angles: the roots of Q and of Q' (an extremum of Q marks a
-  // double root that rounding may keep from changing sign) on both charts.
-  const TrigPolynomial dQ = Q.derivative();
+  // Candidate angles: the roots of Q on both charts, and the midpoints of the
+  // intervals where it may have a double root.
   for (const bool shifted : {false, true}) {
-    std::array<double, 4 * kPolyDegree> ts;
-    int num = rootsOnChart(onChart(Q, shifted), ts.data(), 2 * kPolyDegree);
-    num += rootsOnChart(onChart(dQ, shifted), ts.data() + num, 2 * kPolyDegree);
+    std::array<double, kMaxChartCandidates> ts;
+    const int num = rootsOnChart(onChart(Q, shifted), kBernsteinNoise * terms, ts.data());
     const double sign = shifted ? -1.0 : 1.0;
     for (int i = 0; i < num; ++i) {
       const double t = ts[i], denominator = 1.0 + t * t;
       search.considerRimAngle(sign * (1.0 - t * t) / denominator, sign * 2.0 * t / denominator);
     }
-  }
-  // Eight fixed angles: the candidates when Q vanishes identically (pairs
-  // symmetric about disk 1's axis), harmless upper bounds otherwise.
-  for (int k = 0; k < 8; ++k) {
-    const double angle = k * (kPi / 4);
-    search.considerRimAngle(std::cos(angle), std::sin(angle));
   }
 
   search.polishBestRimPair();

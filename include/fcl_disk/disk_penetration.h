@@ -50,13 +50,14 @@ struct DiskSignedDistanceResult {
 /// L, K: halves of the derivatives of |a|^2 and rho^2). Every real root of Q is
 /// found (two charts theta = 2 atan t and pi + 2 atan t, t in [-1, 1]; the
 /// degree-8 polynomial's roots isolated by Bernstein subdivision, Descartes'
-/// rule, and polished by Newton steps within their brackets), and F is
-/// evaluated at the directions each root gives (+-(b - a), +-t1 x t2), at the
-/// four kinks, at the roots of Q' (a double root may not change sign in
-/// rounding) and at eight fixed angles; when Q vanishes identically (coaxial
-/// disks, Villarceau pairs) at 64 angles. Every value F(w) is an upper bound on
-/// PD, and the candidate set contains a global minimiser, so the smallest value
-/// is PD (a proof, not a local search). The best rim pair is then polished by
+/// rule, and polished by Newton steps within their brackets; where the
+/// coefficients cannot decide, the extremum between two roots is found too,
+/// which catches double roots that do not change sign in rounding), and F is
+/// evaluated at the directions each root gives (+-(b - a), +-t1 x t2) and at
+/// the four kinks; when Q vanishes identically (coaxial disks, Villarceau
+/// pairs) at 64 rim angles. Every value F(w) is an upper bound on PD, and the
+/// candidate set contains a global minimiser, so the smallest value is PD (a
+/// proof, not a local search). The best rim pair is then polished by
 /// Newton's method on the two critical-pair equations.
 ///
 /// Guarantee (double): |PD - PD_true| <= 1e-12 * (r1 + r2 + |c1 - c2|), tested
