@@ -37,6 +37,9 @@ constexpr double kOnAxisTolerance = 1e-6;
 constexpr double kQVanishes = 1e-12;
 constexpr int kFixedAnglesWhenQVanishes = 64;
 
+/// F at a kink within this of 0 (scene sizes: a few ulps, F's rounding) is PD = 0.
+constexpr double kZeroDepth = 8 * std::numeric_limits<double>::epsilon();
+
 /// Two rim points closer than this (scene sizes) give no direction b - a, and
 /// tangents whose cross product is shorter than this no direction t1 x t2
 /// (each known to ~1e-16: the direction to ~1e-7, an O(1e-14) error in F).
@@ -565,6 +568,12 @@ Penetration penetrationInFrame1(const PairInFrame1& pair) {
   search.consider(-Vec3::UnitZ());
   search.consider(n2);
   search.consider(-n2);
+  // PD >= 0 for disks that share a point and every F(w) >= PD: a kink at 0 to
+  // rounding (coplanar overlapping disks, a rim on the other's face) is the
+  // minimum. (Apart pairs have min F = -d < 0: only touching ones stop here.)
+  if (std::abs(search.best().value) <= kZeroDepth) {
+    return withWitnesses(pair, search.best());
+  }
 
   // Q(theta) = rho^2 L^2 - r1^2 K^2 along disk 2's rim a(theta) = c + r2 (cos u + sin v).
   const Vec3& c = pair.c;
