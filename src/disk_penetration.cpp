@@ -276,10 +276,6 @@ constexpr int kMaxSubdivisions = 24;
 /// clear sign carries.
 constexpr double kBernsteinNoise = 1e-11;
 
-/// Candidates one chart can yield: at most 8 roots and 7 extrema, plus one
-/// midpoint per undecided leaf (at most kMaxIntervals / kMaxSubdivisions * 2)
-/// and per interval left when the budget runs out (at most the stack's depth).
-constexpr int kMaxChartCandidates = 96;
 
 /// At most this many intervals are examined per polynomial (a degree-8
 /// polynomial with simple roots needs a few dozen); past it, each interval
@@ -287,9 +283,15 @@ constexpr int kMaxChartCandidates = 96;
 /// rounding scatters sign changes through nearly vanishing coefficients.
 constexpr int kMaxIntervals = 256;
 
+/// Candidates one chart can yield: at most 8 roots and 7 extrema, the ends of
+/// undecided intervals where |p| is within the noise, one midpoint per
+/// undecided leaf, and one per interval left when the budget runs out.
+constexpr int kMaxChartCandidates = 2 * kMaxIntervals + 2 * kPolyDegree;
+
 /// Real roots of p (monomial basis) in [-1, 1], written to `out` (at most
 /// kMaxChartCandidates), by Bernstein subdivision (de Casteljau halves). An
-/// interval is decided when its coefficients show
+/// interval's ends are candidates where |p| is within `noise`, and the interval
+/// is decided when its coefficients show
 /// - no sign change and none within `noise` of zero: |p| > noise, no root;
 /// - one sign change between its ends: one root, bracketed and polished;
 /// - otherwise, when the coefficients of p' (n (b_{i+1} - b_i)) change sign at
@@ -331,6 +333,11 @@ int rootsOnChart(const Polynomial& p, double noise, double* out) {
       continue;
     }
     const Bernstein& b = interval.b;
+    // An end within the noise of zero may be a root that does not change sign
+    // (a double root where a halving fell, as on the symmetry axis of a
+    // symmetric pair): a candidate, whatever the interior holds.
+    if (std::abs(b[0]) <= noise) add(interval.lo);
+    if (std::abs(b[kPolyDegree]) <= noise) add(interval.hi);
     const int changes = signChanges(b);
     if (changes == 0) {
       double smallest = std::abs(b[0]);
@@ -558,16 +565,25 @@ Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Bes
 }
 
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
-Penetration penetrationInFrame1(const PairInFrame1& pair) {
+/// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
+/// which only changes the order of the kinks so that the tie-break is the
+/// caller's +n1 either way.
+Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
   PenetrationSearch search(pair);
   // Disk 2's kinks are where |P2 w| = sqrt((u.w)^2 + (v.w)^2) vanishes, along
   // u x v: R's third column only to within an accepted rotation's defect.
   const Vec3 n2 = pair.R.col(0).cross(pair.R.col(1)).normalized();
-  // The kinks first: their order is the documented tie-break.
-  search.consider(Vec3::UnitZ());
-  search.consider(-Vec3::UnitZ());
-  search.consider(n2);
-  search.consider(-n2);
+  // The kinks first: their order is the documented tie-break (the caller's
+  // +n1, -n1, +n2, -n2).
+  if (swapped) {
+    for (const Vec3& kink : {Vec3(-n2), n2, Vec3(-Vec3::UnitZ()), Vec3(Vec3::UnitZ())}) {
+      search.consider(kink);
+    }
+  } else {
+    for (const Vec3& kink : {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), n2, Vec3(-n2)}) {
+      search.consider(kink);
+    }
+  }
   // PD >= 0 for disks that share a point and every F(w) >= PD: a kink at 0 to
   // rounding (coplanar overlapping disks, a rim on the other's face) is the
   // minimum. (Apart pairs have min F = -d < 0: only touching ones stop here.)
@@ -642,20 +658,31 @@ template <typename S>
 DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                             const fcl::Transform3<S>& X_W2) {
   if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return nanSignedDistance<S>();
-  const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
+  // Q parameterises the rim of the pair's disk 2 and measures from disk 1's
+  // axis: with the smaller disk as disk 2 its terms are of the size of its
+  // features (with a disk 1e-5 the size of the other as disk 2's partner,
+  // Q's structure near the small disk would sit 1e-20 below its terms, under
+  // the rounding).
+  const bool swapped = r2 > r1;
+  const auto& X_WA = swapped ? X_W2 : X_W1;  // the frame the search runs in
+  const PairInFrame1 pair = swapped ? PairInFrame1::fromWorld(r2, X_W2, r1, X_W1)
+                                    : PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
   const double scale = pair.scale();
   const PairInFrame1 unit_pair =
       PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
-  const Penetration found = penetrationInFrame1(unit_pair);
+  const Penetration found = penetrationInFrame1(unit_pair, swapped);
 
-  const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
-  const Vec3 c1 = X_W1.translation().template cast<double>();
+  const internal::Mat3 R_WA = X_WA.linear().template cast<double>();
+  const Vec3 c_A = X_WA.translation().template cast<double>();
+  const Vec3 p_WA = c_A + R_WA * (found.p1 * scale), p_WB = c_A + R_WA * (found.p2 * scale);
   DiskSignedDistanceResult<S> result;
   result.signed_distance = S(-found.depth * scale);
-  result.p_W1 = (c1 + R_W1 * (found.p1 * scale)).template cast<S>();
-  result.p_W2 = (c1 + R_W1 * (found.p2 * scale)).template cast<S>();
-  // Normalised: R_W1 is orthonormal only to within kRotationDefectTolerance.
-  result.direction = (R_W1 * found.w).normalized().template cast<S>();
+  result.p_W1 = (swapped ? p_WB : p_WA).template cast<S>();
+  result.p_W2 = (swapped ? p_WA : p_WB).template cast<S>();
+  // Normalised: R_WA is orthonormal only to within kRotationDefectTolerance.
+  // Swapped, w moves the caller's disk 1: disk 2 moves along -w.
+  const Vec3 w_W = (R_WA * found.w).normalized();
+  result.direction = (swapped ? Vec3(-w_W) : w_W).template cast<S>();
   return result;
 }
 

@@ -1298,6 +1298,113 @@ void checkInvalidInput() {
   }
 }
 
+/// Disks of very different sizes, the small one crossing the large one next to
+/// its rim (where the large rim passes near the small disk's axis), both
+/// orders, against the reference: the search must follow the smaller rim
+/// (docs/penetration_depth.md, section 2). The first pose is the one
+/// fuzz_disk_intersection found (corpus regression-depth-tiny-disk-on-huge-rim).
+TEST(RadiusRatios, SmallDiskAcrossALargeRimMatchesReference) {
+  using Pose = fcl::Transform3d;
+  std::vector<std::tuple<double, Pose, double, Pose>> cases;
+  {
+    Pose X1 = Pose::Identity(), X2 = Pose::Identity();
+    X1.linear() << 0.67098272989643681, -0.55247692072578025, 0.49452141333423089,
+        0.20118130306279841, -0.50627493586560135, -0.83857723115538729, 0.71365836327943344,
+        0.6621593021166744, -0.22855371172150973;
+    X1.translation() << 0, 0, 0.32251739501953125;
+    X2.linear() << 0.77398943515409824, 0.6135323587397401, 0.1565835210010649,
+        -0.41431689383755127, 0.67771463495008222, -0.60749023453491036, -0.47883386027999675,
+        0.40531582544199773, 0.77874078864255514;
+    X2.translation() << -5200.5393027995451, 2783.8549917301411, 3217.621441349921;
+    cases.emplace_back(0.084490776062011719, X1, 6719.125, X2);
+  }
+  fcl_disk_test::Random rng(kSeed + 77);
+  constexpr int kRatioCases = 200;
+  while (int(cases.size()) < kRatioCases) {
+    const double big = 1.0, small = rng.logUniform(1e-6, 1e-1);
+    Pose X_big = Pose::Identity(), X_small = Pose::Identity();
+    X_big.linear() = rng.rotation();
+    X_small.linear() = rng.rotation();
+    // The small disk's centre within its radius of a point of the large rim.
+    const double angle = rng.uniform(0, 2 * M_PI);
+    const Eigen::Vector3d rim = big * (std::cos(angle) * X_big.linear().col(0) +
+                                       std::sin(angle) * X_big.linear().col(1));
+    X_small.translation() = rim + rng.inBall(small);
+    if (!fcl_disk::intersectDisks(small, X_small, big, X_big)) continue;
+    cases.emplace_back(small, X_small, big, X_big);
+  }
+  int worst_case = -1;
+  double worst = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [r1, X1, r2, X2] = cases[i];
+    const auto reference = ref::referencePenetration(r1, X1, r2, X2);
+    const double scale = double(reference.scale);
+    for (const bool swap : {false, true}) {
+      const auto answer = swap ? fcl_disk::diskPenetration(r2, X2, r1, X1)
+                               : fcl_disk::diskPenetration(r1, X1, r2, X2);
+      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
+      EXPECT_LE(error, Tol<double>::kPdRelative)
+          << "case " << i << (swap ? " swapped" : "") << ": PD " << -answer.signed_distance
+          << " reference " << double(reference.pd);
+      if (error > worst) worst = error, worst_case = int(i);
+    }
+  }
+  std::cout << "  " << cases.size() << " pairs of radius ratio 1e-6..1e-1 (and 1.3e-5): largest "
+            << "|PD - PD_ref| / scale " << worst << " (case " << worst_case << ")\n";
+}
+
+/// Pairs symmetric under a reflection (disk 1 in the plane x = 0, disk 2
+/// centred in it with its normal in it too): Q is even about the rim angle
+/// on the symmetry plane and may touch zero there (a double root) exactly
+/// where Bernstein subdivision halves its chart (docs/penetration_depth.md,
+/// section 2). The first pose is the one fuzz_disk_intersection found (corpus
+/// regression-depth-symmetric-double-root), the others random, both orders.
+TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
+  using Pose = fcl::Transform3d;
+  std::vector<std::tuple<double, Pose, double, Pose>> cases;
+  Pose X1 = Pose::Identity();
+  X1.linear() << 0, 0, 1, 1, 0, 0, 0, 1, 0;  // normal +x
+  {
+    Pose X2 = Pose::Identity();
+    X2.linear() << 0, 1, 0, 0, 0, 1, 1, 0, 0;  // normal +y
+    X2.translation() << 0, 0.28241230364423245, -1.9799604264259688;
+    cases.emplace_back(2.0, X1, 0.5, X2);
+  }
+  fcl_disk_test::Random rng(kSeed + 78);
+  constexpr int kSymmetricCases = 200;
+  while (int(cases.size()) < kSymmetricCases) {
+    const double r1 = rng.uniform(0.3, 2.0), r2 = rng.uniform(0.3, 2.0);
+    const double tilt = rng.uniform(0, 2 * M_PI);
+    // Disk 2's normal in the symmetry plane x = 0; its in-plane axes x and the rest.
+    const Eigen::Vector3d n2(0, std::cos(tilt), std::sin(tilt));
+    const Eigen::Vector3d u2 = Eigen::Vector3d::UnitX(), v2 = n2.cross(u2);
+    Pose X2 = Pose::Identity();
+    X2.linear().col(0) = u2;
+    X2.linear().col(1) = v2;
+    X2.linear().col(2) = n2;
+    X2.translation() << 0, rng.uniform(-2, 2), rng.uniform(-2, 2);
+    if (!fcl_disk::intersectDisks(r1, X1, r2, X2)) continue;
+    cases.emplace_back(r1, X1, r2, X2);
+  }
+  double worst = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [r1, A, r2, B] = cases[i];
+    const auto reference = ref::referencePenetration(r1, A, r2, B);
+    const double scale = double(reference.scale);
+    for (const bool swap : {false, true}) {
+      const auto answer = swap ? fcl_disk::diskPenetration(r2, B, r1, A)
+                               : fcl_disk::diskPenetration(r1, A, r2, B);
+      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
+      EXPECT_LE(error, Tol<double>::kPdRelative)
+          << "case " << i << (swap ? " swapped" : "") << ": PD " << -answer.signed_distance
+          << " reference " << double(reference.pd);
+      worst = std::max(worst, error);
+    }
+  }
+  std::cout << "  " << cases.size() << " symmetric pairs: largest |PD - PD_ref| / scale " << worst
+            << "\n";
+}
+
 TEST(InvalidInput, NaNAndNoCrashDouble) { checkInvalidInput<double>(); }
 TEST(InvalidInput, NaNAndNoCrashFloat) { checkInvalidInput<float>(); }
 

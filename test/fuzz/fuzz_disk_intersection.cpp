@@ -5,7 +5,9 @@
 // the exact verdict), where either answer is acceptable; the contact point lies
 // on both disks, the normal is unit, the depth finite and >= 0, and translating
 // disk 2 by (depth + a small step) along the normal separates the disks and
-// leaves them no further apart than that translation (disk_intersection.h).
+// leaves them no further apart than that translation, a step less does not,
+// and no direction separates sooner (depth <= F(w) on 68 directions: the
+// depth is the exact penetration depth, disk_intersection.h).
 // Asking for the contact does not change the verdict. Input describing no disk
 // pair (invalid radius, NaN/inf, rotation beyond the defect tolerance): false.
 #include <fcl_disk/disk_intersection.h>
@@ -117,6 +119,43 @@ void checkIntersection(const DiskPairInput<S>& in) {
       (X_W2.translation() + (depth + step) * normal.normalized()).template cast<S>();
   require(!fcl_disk::intersectDisks<S>(in.r1, in.X_W1, in.r2, separated_X_W2),
           "intersection: moving disk 2 by (depth + step) normal separates", in, contactText);
+  // The depth is the shortest separating translation (docs/penetration_depth.md):
+  // no direction w separates sooner, F(w) = h1(w) + h2(-w) >= depth for every
+  // unit w (F(w) is a separating length along w), here on the disks' normals
+  // and a Fibonacci sphere of directions; and a step short of the depth along
+  // the normal the disks still intersect.
+  const double depth_slack =
+      kBoundSafetyFactor * ((E::kExactDistanceRelative + E::kPoseRoundingRelative) * scale.scene +
+                            defectCost(in));
+  const auto separating_length = [&](const Vector3d& w) {
+    const auto in_plane = [&](const Pose3d& X) {
+      return std::hypot(X.linear().col(0).dot(w), X.linear().col(1).dot(w));
+    };
+    return (X_W1.translation() - X_W2.translation()).dot(w) + double(in.r1) * in_plane(X_W1) +
+           double(in.r2) * in_plane(X_W2);
+  };
+  std::vector<Vector3d> directions = {X_W1.linear().col(2), -X_W1.linear().col(2),
+                                      X_W2.linear().col(2), -X_W2.linear().col(2)};
+  constexpr int kSphereDirections = 64;
+  for (int k = 0; k < kSphereDirections; ++k) {
+    const double z = 1.0 - (2.0 * k + 1.0) / kSphereDirections;
+    const double ring = std::sqrt(1.0 - z * z), angle = k * 2.399963229728653;  // golden angle
+    directions.emplace_back(ring * std::cos(angle), ring * std::sin(angle), z);
+  }
+  for (const Vector3d& w : directions) {
+    require(depth <= separating_length(w.normalized()) + depth_slack,
+            "intersection: depth <= F(w) for every direction w (the shortest translation)", in,
+            [&] { return "F(w) " + numberText(separating_length(w.normalized())) + " along " +
+                         vectorText(w) + "; " + contactText(); });
+  }
+  if (depth > 2 * step) {
+    fcl::Transform3<S> short_X_W2 = in.X_W2;
+    short_X_W2.translation() =
+        (X_W2.translation() + (depth - step) * normal.normalized()).template cast<S>();
+    require(fcl_disk::intersectDisks<S>(in.r1, in.X_W1, in.r2, short_X_W2),
+            "intersection: moving disk 2 by (depth - step) normal leaves them intersecting", in,
+            contactText);
+  }
   const auto after = fcl_disk::exactDiskDistance<S>(in.r1, in.X_W1, in.r2, separated_X_W2);
   require(double(after.distance) <=
               depth + step +
