@@ -1,0 +1,370 @@
+// Internal: real roots of a trigonometric polynomial of degree <= 4 on the
+// whole circle, found rigorously (every root, and a candidate at every place a
+// double root may hide): the polynomial is mapped to two bounded charts,
+// theta = 2 atan t and pi + 2 atan t with t in [-1, 1], where it becomes an
+// algebraic polynomial of degree 8, whose roots are isolated by Bernstein
+// subdivision (Descartes' rule) and polished by Newton steps within their
+// brackets. Used by the penetration-depth solvers; derivation in
+// docs/penetration_depth.md, section 2.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <complex>
+#include <limits>
+
+namespace fcl_disk {
+namespace internal {
+namespace trig_roots {
+
+/// The largest degree handled as a trigonometric polynomial, and the degree of
+/// the algebraic polynomial it becomes on a chart (t = tan(theta / 2)).
+/// Lower degrees are handled as degree 4 with zero coefficients.
+constexpr int kTrigDegree = 4;
+constexpr int kPolyDegree = 2 * kTrigDegree;
+/// Samples that determine a trigonometric polynomial of degree 4.
+constexpr int kSamples = 2 * kTrigDegree + 1;
+constexpr double kPi = 3.141592653589793;
+
+/// Root polishing stops at a Newton step (or bracket) this small in t (t lies
+/// in [-1, 1]): 8 ulps of 1, the resolution of t, so the angle is as accurate
+/// as double allows; or after kMaxRootIterations steps (bisection alone needs
+/// ~50).
+constexpr double kRootTolerance = 8 * std::numeric_limits<double>::epsilon();
+constexpr int kMaxRootIterations = 100;
+/// Horner's scheme for a degree-8 polynomial at |t| <= 1 rounds by at most
+/// ~2 * 8 ulps of sum |p_j|: 32 ulps; once |p(t)| is below that, t is the root
+/// to the polynomial's own resolution and further steps only chase rounding.
+constexpr double kEvaluationRounding = 32 * std::numeric_limits<double>::epsilon();
+
+// ---------------------------------------------------------------------------
+// Trigonometric polynomials of degree 4 in real form:
+// f(theta) = C[0] + sum_{k=1..4} C[k] cos(k theta) + S[k] sin(k theta).
+
+struct TrigPolynomial {
+  std::array<double, kTrigDegree + 1> C{}, S{};  // S[0] unused (0)
+
+  /// The coefficients of the degree-4 trigonometric polynomial with values
+  /// f(theta_j) at theta_j = 2 pi j / 9, j = 0..8: the discrete Fourier
+  /// transform, exact for this degree (9 samples, no aliasing).
+  static TrigPolynomial fromSamples(const std::array<double, kSamples>& values) {
+    struct Table {
+      double cos_kj[kTrigDegree + 1][kSamples], sin_kj[kTrigDegree + 1][kSamples];
+      Table() {
+        for (int k = 0; k <= kTrigDegree; ++k) {
+          for (int j = 0; j < kSamples; ++j) {
+            const double angle = 2 * kPi * k * j / kSamples;
+            cos_kj[k][j] = std::cos(angle);
+            sin_kj[k][j] = std::sin(angle);
+          }
+        }
+      }
+    };
+    static const Table table;
+    TrigPolynomial f;
+    for (int k = 0; k <= kTrigDegree; ++k) {
+      double c = 0, s = 0;
+      for (int j = 0; j < kSamples; ++j) {
+        c += values[j] * table.cos_kj[k][j];
+        s += values[j] * table.sin_kj[k][j];
+      }
+      const double weight = (k == 0 ? 1.0 : 2.0) / kSamples;
+      f.C[k] = weight * c;
+      f.S[k] = k == 0 ? 0.0 : weight * s;
+    }
+    return f;
+  }
+};
+
+/// cos and sin of the N angles 2 pi k / N.
+template <int N>
+struct AngleTable {
+  std::array<double, N> cos, sin;
+  AngleTable() {
+    for (int k = 0; k < N; ++k) {
+      cos[k] = std::cos(2 * kPi * k / N);
+      sin[k] = std::sin(2 * kPi * k / N);
+    }
+  }
+};
+
+/// An algebraic polynomial p[0] + p[1] t + ... + p[8] t^8.
+using Polynomial = std::array<double, kPolyDegree + 1>;
+
+/// (1 + t^2)^4 cos(k theta) and (1 + t^2)^4 sin(k theta) at theta = 2 atan(t):
+/// the real and imaginary parts of (1 + i t)^(2k) (1 + t^2)^(4 - k), since
+/// e^{i theta} = (1 + i t)^2 / (1 + t^2). Integer coefficients.
+struct ChartBasis {
+  std::array<Polynomial, kTrigDegree + 1> cos_k{}, sin_k{};
+  ChartBasis() {
+    for (int k = 0; k <= kTrigDegree; ++k) {
+      // (1 + i t)^(2k) = sum_j binom(2k, j) i^j t^j.
+      using Complex = std::complex<double>;
+      std::array<Complex, kPolyDegree + 1> power{};
+      double binom = 1;
+      for (int j = 0; j <= 2 * k; ++j) {
+        static constexpr Complex kIPowers[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        power[j] = binom * kIPowers[j % 4];
+        binom = binom * (2 * k - j) / (j + 1);
+      }
+      // times (1 + t^2)^(4 - k) = sum_l binom(4 - k, l) t^(2l).
+      double binom_l = 1;
+      for (int l = 0; l <= kTrigDegree - k; ++l) {
+        for (int j = 0; j <= 2 * k; ++j) {
+          cos_k[k][j + 2 * l] += binom_l * power[j].real();
+          sin_k[k][j + 2 * l] += binom_l * power[j].imag();
+        }
+        binom_l = binom_l * (kTrigDegree - k - l) / (l + 1);
+      }
+    }
+  }
+};
+
+/// f on the chart theta = offset + 2 atan(t), times (1 + t^2)^4; offset 0 or
+/// pi (cos and sin of k(pi + phi) are (-1)^k those of k phi).
+inline Polynomial onChart(const TrigPolynomial& f, bool shifted_by_pi) {
+  static const ChartBasis basis;
+  Polynomial p{};
+  for (int k = 0; k <= kTrigDegree; ++k) {
+    const double sign = shifted_by_pi && k % 2 == 1 ? -1.0 : 1.0;
+    const double C = sign * f.C[k], S = sign * f.S[k];
+    for (int j = 0; j <= kPolyDegree; ++j) p[j] += C * basis.cos_k[k][j] + S * basis.sin_k[k][j];
+  }
+  return p;
+}
+
+inline double evaluate(const double* p, int degree, double t) {
+  double value = p[degree];
+  for (int j = degree - 1; j >= 0; --j) value = value * t + p[j];
+  return value;
+}
+
+/// The root of p in [lo, hi], where p(lo) and p(hi) have opposite signs:
+/// Newton steps kept inside the bracket, bisection when a step would leave it.
+inline double rootInBracket(const double* p, const double* dp, int degree, double lo, double hi,
+                     double p_lo) {
+  // Start where the chord between the bracket's ends crosses zero.
+  const double p_hi = evaluate(p, degree, hi);
+  double t = p_hi != p_lo ? lo - p_lo * (hi - lo) / (p_hi - p_lo) : 0.5 * (lo + hi);
+  if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
+  // Horner's rounding bound at |t| <= 1: a value below it carries no sign.
+  double magnitude = 0.0;
+  for (int j = 0; j <= degree; ++j) magnitude += std::abs(p[j]);
+  const double value_at_rounding = kEvaluationRounding * magnitude;
+  for (int i = 0; i < kMaxRootIterations && hi - lo > kRootTolerance; ++i) {
+    const double value = evaluate(p, degree, t);
+    if (std::abs(value) <= value_at_rounding) return t;
+    if ((value < 0) == (p_lo < 0)) {
+      lo = t;
+      p_lo = value;
+    } else {
+      hi = t;
+    }
+    const double slope = evaluate(dp, degree - 1, t);
+    const double newton = slope != 0.0 ? t - value / slope : lo - 1;
+    if (!(newton > lo && newton < hi)) {
+      t = 0.5 * (lo + hi);
+      continue;
+    }
+    // Newton converges from one side, so the bracket need not shrink: stop
+    // on a step at the resolution of t.
+    const bool converged = std::abs(newton - t) <= kRootTolerance;
+    t = newton;
+    if (converged) break;
+  }
+  return t;
+}
+
+/// p in the Bernstein basis of [-1, 1]: p(t) = sum_i b_i binom(8, i) s^i (1 - s)^(8 - i)
+/// with t = 2 s - 1. By Descartes' rule for this basis, p has at most as many
+/// roots in the interval as b has sign changes, and the same parity.
+using Bernstein = std::array<double, kPolyDegree + 1>;
+
+inline Bernstein toBernstein(const Polynomial& p) {
+  // q(s) = p(2 s - 1) by Horner's scheme on polynomials in s.
+  Polynomial q{};
+  for (int j = kPolyDegree; j >= 0; --j) {
+    for (int i = kPolyDegree; i >= 1; --i) q[i] = 2 * q[i - 1] - q[i];
+    q[0] = p[j] - q[0];
+  }
+  // b_i = sum_{j <= i} binom(i, j) / binom(8, j) q_j.
+  struct Weights {
+    double w[kPolyDegree + 1][kPolyDegree + 1] = {};
+    Weights() {
+      static constexpr double kBinom8[kPolyDegree + 1] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
+      for (int i = 0; i <= kPolyDegree; ++i) {
+        double binom_ij = 1;  // binom(i, j)
+        for (int j = 0; j <= i; ++j) {
+          w[i][j] = binom_ij / kBinom8[j];
+          binom_ij = binom_ij * (i - j) / (j + 1);
+        }
+      }
+    }
+  };
+  static const Weights weights;
+  Bernstein b{};
+  for (int i = 0; i <= kPolyDegree; ++i) {
+    for (int j = 0; j <= i; ++j) b[i] += weights.w[i][j] * q[j];
+  }
+  return b;
+}
+
+inline int signChanges(const Bernstein& b) {
+  int changes = 0;
+  double last = 0.0;
+  for (const double x : b) {
+    if (x == 0.0) continue;
+    if (last != 0.0 && (x < 0) != (last < 0)) ++changes;
+    last = x;
+  }
+  return changes;
+}
+
+/// Subdivisions of [-1, 1] before an undecided interval (more than one sign
+/// change, or none but a coefficient within the noise: a double root, or a
+/// pair of roots rounding may merge) is taken as one candidate, its midpoint:
+/// 2^-24 wide in t, within 6e-8 of the root(s), where a function stationary
+/// at the root is off by ~4e-15 of its curvature (the callers polish their
+/// best candidate anyway).
+constexpr int kMaxSubdivisions = 24;
+
+/// Bernstein coefficients within this many times the size of the terms a
+/// polynomial is computed from (the caller's `noise` scale) of zero may be
+/// rounding: ~5e4 ulps, far above the rounding the sampling, the Fourier
+/// transform and the change of basis leave (~1e3 ulps of the chart polynomial,
+/// which is up to 16 times f), far below any coefficient a clear sign carries.
+constexpr double kBernsteinNoise = 1e-11;
+
+/// At most this many intervals are examined per polynomial (a degree-8
+/// polynomial with simple roots needs a few dozen); past it, each interval
+/// left is taken as one candidate (its midpoint). Bounds the work when
+/// rounding scatters sign changes through nearly vanishing coefficients.
+constexpr int kMaxIntervals = 256;
+
+/// Candidates one chart can yield: at most 8 roots and 7 extrema, the ends of
+/// undecided intervals where |p| is within the noise, one midpoint per
+/// undecided leaf, and one per interval left when the budget runs out.
+constexpr int kMaxChartCandidates = 2 * kMaxIntervals + 2 * kPolyDegree;
+
+/// Real roots of p (monomial basis) in [-1, 1], written to `out` (at most
+/// kMaxChartCandidates), by Bernstein subdivision (de Casteljau halves). An
+/// interval's ends are candidates where |p| is within `noise`, and the interval
+/// is decided when its coefficients show
+/// - no sign change and none within `noise` of zero: |p| > noise, no root;
+/// - one sign change between its ends: one root, bracketed and polished;
+/// - otherwise, when the coefficients of p' (n (b_{i+1} - b_i)) change sign at
+///   most once: p has at most one extremum there, found by Newton within its
+///   bracket and taken as a candidate (it marks a double root, or two roots
+///   rounding may merge), and p is monotone on either side of it, so each side
+///   holds a root exactly when p changes sign over it.
+/// Undecided intervals are halved, down to kMaxSubdivisions (then the midpoint
+/// is the candidate), within a budget of kMaxIntervals.
+inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
+  Polynomial dp{}, ddp{};
+  for (int j = 0; j < kPolyDegree; ++j) dp[j] = (j + 1) * p[j + 1];
+  for (int j = 0; j + 1 < kPolyDegree; ++j) ddp[j] = (j + 1) * dp[j + 1];
+  int count = 0;
+  const auto add = [&](double t) {
+    if (count < kMaxChartCandidates) out[count++] = t;
+  };
+  // The root of p in [lo, hi] if p changes sign over it (values given).
+  const auto rootIfSignChange = [&](double lo, double hi, double p_lo, double p_hi) {
+    if (p_lo == 0.0) {
+      add(lo);
+    } else if (p_hi != 0.0 && (p_lo < 0) != (p_hi < 0)) {
+      add(rootInBracket(p.data(), dp.data(), kPolyDegree, lo, hi, p_lo));
+    }
+  };
+  struct Interval {
+    Bernstein b;
+    double lo, hi;
+    int depth;
+  };
+  std::array<Interval, kMaxSubdivisions + 2> stack;
+  int size = 0, examined = 0;
+  stack[size++] = {toBernstein(p), -1.0, 1.0, 0};
+  while (size > 0) {
+    const Interval interval = stack[--size];
+    const double mid = 0.5 * (interval.lo + interval.hi);
+    if (++examined > kMaxIntervals) {
+      add(mid);
+      continue;
+    }
+    const Bernstein& b = interval.b;
+    // An end within the noise of zero may be a root that does not change sign
+    // (a double root where a halving fell, as on the symmetry axis of a
+    // symmetric pair): a candidate, whatever the interior holds.
+    if (std::abs(b[0]) <= noise) add(interval.lo);
+    if (std::abs(b[kPolyDegree]) <= noise) add(interval.hi);
+    const int changes = signChanges(b);
+    if (changes == 0) {
+      double smallest = std::abs(b[0]);
+      for (const double x : b) smallest = std::min(smallest, std::abs(x));
+      if (smallest > noise) continue;  // |p| > noise on the interval: no root
+    }
+    if (changes == 1 && b[0] != 0.0 && b[kPolyDegree] != 0.0) {  // the ends differ in sign
+      rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
+      continue;
+    }
+    std::array<double, kPolyDegree> derivative;  // p' in the Bernstein basis, up to a factor
+    for (int i = 0; i < kPolyDegree; ++i) derivative[i] = b[i + 1] - b[i];
+    int derivative_changes = 0;
+    double last = 0.0;
+    for (const double x : derivative) {
+      if (x == 0.0) continue;
+      if (last != 0.0 && (x < 0) != (last < 0)) ++derivative_changes;
+      last = x;
+    }
+    if (derivative_changes == 0) {  // p monotone: a root iff it changes sign
+      rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
+      continue;
+    }
+    if (derivative_changes == 1 && derivative[0] != 0.0 && derivative[kPolyDegree - 1] != 0.0) {
+      const double extremum = rootInBracket(dp.data(), ddp.data(), kPolyDegree - 1, interval.lo,
+                                            interval.hi, derivative[0]);
+      add(extremum);
+      const double p_extremum = evaluate(p.data(), kPolyDegree, extremum);
+      rootIfSignChange(interval.lo, extremum, b[0], p_extremum);
+      if (p_extremum != 0.0) rootIfSignChange(extremum, interval.hi, p_extremum, b[kPolyDegree]);
+      continue;
+    }
+    if (interval.depth >= kMaxSubdivisions || size + 2 > int(stack.size())) {
+      add(mid);
+      continue;
+    }
+    // de Casteljau at s = 1/2: the left half's coefficients are the first
+    // entries of each level, the right half's the last.
+    Interval left{{}, interval.lo, mid, interval.depth + 1};
+    Interval right{{}, mid, interval.hi, interval.depth + 1};
+    Bernstein level = b;
+    for (int r = 0; r <= kPolyDegree; ++r) {
+      left.b[r] = level[0];
+      right.b[kPolyDegree - r] = level[kPolyDegree - r];
+      for (int i = 0; i < kPolyDegree - r; ++i) level[i] = 0.5 * (level[i] + level[i + 1]);
+    }
+    stack[size++] = right;
+    stack[size++] = left;
+  }
+  return count;
+}
+
+/// Calls visit(cos theta, sin theta) for every real root theta of f on the
+/// circle and every candidate for a double root (see rootsOnChart), given the
+/// rounding level `noise` of f's values (|f| within it may be 0).
+template <typename Visit>
+void forEachRootAngle(const TrigPolynomial& f, double noise, Visit&& visit) {
+  for (const bool shifted : {false, true}) {
+    std::array<double, kMaxChartCandidates> ts;
+    const int num = rootsOnChart(onChart(f, shifted), noise, ts.data());
+    const double sign = shifted ? -1.0 : 1.0;
+    for (int i = 0; i < num; ++i) {
+      const double t = ts[i], denominator = 1.0 + t * t;
+      visit(sign * (1.0 - t * t) / denominator, sign * 2.0 * t / denominator);
+    }
+  }
+}
+
+}  // namespace trig_roots
+}  // namespace internal
+}  // namespace fcl_disk
