@@ -120,7 +120,8 @@ struct DiskShapePair;
 ///   static double boundingRadius(const Shape&);     // about the shape's origin
 ///   static double inflation(const Shape&);          // rho: X = core + B_rho
 ///   static Target target(const Shape&);             // the core, in the shape frame
-///   static auto contactDirections(const Target&);   // a range of Vec3, shape frame
+///   static auto contactDirections(const Target&, const DiskInShape&);
+///                                          // a range of Vec3, shape frame
 template <typename S, typename Shape, typename Traits>
 struct GenericDiskShapePair {
   static DiskShapeDistanceResult<S> distance(S radius, const fcl::Transform3<S>& X_WD,
@@ -148,7 +149,7 @@ struct GenericDiskShapePair {
       const auto depth_along = [&](const Vec3& w) {
         return disk.support(w) - (w.dot(target.support(-w)) - rho);
       };
-      *contact = contactInWorld<S>(X_WS, disk, solution.p, Traits::contactDirections(target),
+      *contact = contactInWorld<S>(X_WS, disk, solution.p, Traits::contactDirections(target, disk),
                                    depth_along);
     }
     return true;

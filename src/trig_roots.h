@@ -33,10 +33,6 @@ constexpr double kPi = 3.141592653589793;
 /// ~50).
 constexpr double kRootTolerance = 8 * std::numeric_limits<double>::epsilon();
 constexpr int kMaxRootIterations = 100;
-/// Horner's scheme for a degree-8 polynomial at |t| <= 1 rounds by at most
-/// ~2 * 8 ulps of sum |p_j|: 32 ulps; once |p(t)| is below that, t is the root
-/// to the polynomial's own resolution and further steps only chase rounding.
-constexpr double kEvaluationRounding = 32 * std::numeric_limits<double>::epsilon();
 
 // ---------------------------------------------------------------------------
 // Trigonometric polynomials of degree 4 in real form:
@@ -148,13 +144,12 @@ inline double rootInBracket(const double* p, const double* dp, int degree, doubl
   const double p_hi = evaluate(p, degree, hi);
   double t = p_hi != p_lo ? lo - p_lo * (hi - lo) / (p_hi - p_lo) : 0.5 * (lo + hi);
   if (!(t > lo && t < hi)) t = 0.5 * (lo + hi);
-  // Horner's rounding bound at |t| <= 1: a value below it carries no sign.
-  double magnitude = 0.0;
-  for (int j = 0; j <= degree; ++j) magnitude += std::abs(p[j]);
-  const double value_at_rounding = kEvaluationRounding * magnitude;
+  // No stop on a value at rounding level: the bracket may also hold a place
+  // where p only touches zero (a double root), and only its sign change
+  // locates the root it brackets.
   for (int i = 0; i < kMaxRootIterations && hi - lo > kRootTolerance; ++i) {
     const double value = evaluate(p, degree, t);
-    if (std::abs(value) <= value_at_rounding) return t;
+    if (value == 0.0) return t;
     if ((value < 0) == (p_lo < 0)) {
       lo = t;
       p_lo = value;

@@ -1357,8 +1357,10 @@ TEST(RadiusRatios, SmallDiskAcrossALargeRimMatchesReference) {
 /// centred in it with its normal in it too): Q is even about the rim angle
 /// on the symmetry plane and may touch zero there (a double root) exactly
 /// where Bernstein subdivision halves its chart (docs/penetration_depth.md,
-/// section 2). The first pose is the one fuzz_disk_intersection found (corpus
-/// regression-depth-symmetric-double-root), the others random, both orders.
+/// section 2), or have a double root at the end of an interval that brackets a
+/// simple root (disks sharing an in-plane axis). The first poses are the ones
+/// fuzz_disk_intersection found (corpus regression-depth-symmetric-double-root,
+/// regression-depth-root-beside-a-double-root), the others random, both orders.
 TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
   using Pose = fcl::Transform3d;
   std::vector<std::tuple<double, Pose, double, Pose>> cases;
@@ -1370,8 +1372,35 @@ TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
     X2.translation() << 0, 0.28241230364423245, -1.9799604264259688;
     cases.emplace_back(2.0, X1, 0.5, X2);
   }
+  {
+    // regression-depth-root-beside-a-double-root: the disks share an in-plane
+    // axis, the small one centred on the large one's rim along it; Q is even,
+    // with a double root at the end of the interval that brackets a simple one.
+    Pose A = Pose::Identity(), B = Pose::Identity();
+    A.linear() << 0.32854471452498946, 0.60876451032984147, 0.72212474096970358,
+        -0.84146034107622192, -0.15857930288342859, 0.51652405470887242, 0.42895555125628276,
+        -0.77734057893556174, 0.46015080070183978;
+    A.translation() << 1, 1, -3.0636321753263474e-05;
+    B.linear() << 0.32854471452498946, -0.43392982979449518, -0.83890599793553333,
+        -0.84146034107622192, 0.26891771093622402, -0.46864459789984741, 0.42895555125628276,
+        0.85987683278440608, -0.27678325001176751;
+    B.translation() << 1.6570894290499789, -0.68292068215244384, 0.85788046619081226;
+    cases.emplace_back(2.0, A, 0.125, B);
+  }
   fcl_disk_test::Random rng(kSeed + 78);
-  constexpr int kSymmetricCases = 200;
+  constexpr int kSymmetricCases = 400;
+  while (int(cases.size()) < kSymmetricCases / 2) {
+    // Sharing an in-plane axis u, centres apart along it.
+    const double r1 = rng.uniform(0.3, 2.0), r2 = rng.uniform(0.05, 2.0);
+    Pose A = Pose::Identity(), B = Pose::Identity();
+    A.linear() = rng.rotation();
+    B.linear() = A.linear() * Eigen::AngleAxisd(rng.uniform(0, 2 * M_PI), Eigen::Vector3d::UnitX())
+                                  .toRotationMatrix();
+    A.translation() = rng.inBall(1.0);
+    B.translation() = A.translation() + rng.uniform(0, r1 + r2) * A.linear().col(0);
+    if (!fcl_disk::intersectDisks(r1, A, r2, B)) continue;
+    cases.emplace_back(r1, A, r2, B);
+  }
   while (int(cases.size()) < kSymmetricCases) {
     const double r1 = rng.uniform(0.3, 2.0), r2 = rng.uniform(0.3, 2.0);
     const double tilt = rng.uniform(0, 2 * M_PI);

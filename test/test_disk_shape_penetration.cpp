@@ -1,19 +1,24 @@
 // Signed distance of a Disk against the shapes with an exact penetration depth
-// (Sphere, Halfspace, Plane: kExactDiskShapePenetration), standalone and through
+// (Sphere, Capsule, Halfspace, Plane: kExactDiskShapePenetration), standalone and through
 // fcl::distance / fcl::collide, float and double, against a long-double
 // reference written here from the geometry (not from the solver's code):
 //   sphere:    PD = rho - dist(s, disk), dist by projecting s on the disk's plane
 //              and clamping to the rim;
 //   halfspace: PD = r |P m| - h0 (the disk's lowest height below the boundary);
-//   plane:     PD = min(h0 + r |P m|, r |P m| - h0).
+//   plane:     PD = min(h0 + r |P m|, r |P m| - h0);
+//   capsule:   PD = rho + min over directions of the segment's separating
+//              length, by a search over the sphere (below).
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <fcl_disk/fcl_disk.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "test_random.h"
 
@@ -34,6 +39,8 @@ constexpr double kSeparationStepRelative = 1e-6;
 /// The path of the continuity check moves the shape by this much per step (scale units).
 constexpr double kPathStepRelative = 1e-3;
 constexpr int kPosesPerShape = 30000;
+/// The capsule's reference is a search (~1 ms a pose): fewer poses.
+constexpr int kCapsulePoses = 1500;
 
 template <typename S>
 fcl::Transform3<S> randomPose(Random& rng, double reach) {
@@ -112,6 +119,87 @@ Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Plane<S>& pl
   return std::min(span + h0, span - h0);
 }
 
+/// Capsule (axis z of its frame, half length h, radius rho): PD = rho + min over
+/// unit w of F(w) = h_disk(w) + h_segment(-w), the segment's depth (or minus
+/// its distance) inflated by rho. The minimum is found by a search of its own:
+/// the disk's normals; the circle w . z = 0 where the segment's ends tie (F is
+/// kinked across it), sampled at kCircleSamples angles, each local minimum
+/// refined by golden sections; and a Fibonacci sphere of kSphereSamples
+/// directions, the best kSphereStarts refined by a shrinking compass search.
+constexpr int kCircleSamples = 720;
+constexpr int kSphereSamples = 6000;
+constexpr int kSphereStarts = 12;
+constexpr Real kSearchFinalStep = 1e-13L;
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Capsule<S>& capsule,
+                    const fcl::Transform3<S>& X_WS) {
+  const Pose disk = diskOf(r, X_WD);
+  const Eigen::Matrix<Real, 3, 3> R_WS = X_WS.linear().template cast<Real>();
+  const VR axis = R_WS.col(2), centre = X_WS.translation().template cast<Real>();
+  const Real h = Real(capsule.lz) / 2;
+  const VR end_a = centre + h * axis, end_b = centre - h * axis;
+  const auto F = [&](const VR& w_raw) {
+    const VR w = w_raw / std::sqrt(w_raw.squaredNorm());
+    const VR in_plane = w - w.dot(disk.n) * disk.n;
+    const Real disk_support = disk.c.dot(w) + disk.r * std::sqrt(in_plane.squaredNorm());
+    return disk_support - std::min(end_a.dot(w), end_b.dot(w));
+  };
+  Real best = std::min(F(disk.n), F(VR(-disk.n)));
+  // The tie circle, in an orthonormal basis (e1, e2) of the plane normal to the axis.
+  VR e1 = axis.cross(VR::UnitX());
+  if (e1.squaredNorm() < 0.25L) e1 = axis.cross(VR::UnitY());
+  e1 /= std::sqrt(e1.squaredNorm());
+  const VR e2 = axis.cross(e1);
+  const auto on_circle = [&](Real angle) { return F(std::cos(angle) * e1 + std::sin(angle) * e2); };
+  const Real step = 2 * Real(M_PI) / kCircleSamples;
+  for (int k = 0; k < kCircleSamples; ++k) {
+    const Real angle = k * step;
+    if (!(on_circle(angle) <= on_circle(angle - step) && on_circle(angle) <= on_circle(angle + step))) {
+      continue;
+    }
+    Real lo = angle - step, hi = angle + step;  // golden sections on a local minimum
+    for (int i = 0; i < 200 && hi - lo > 1e-18L; ++i) {
+      const Real m1 = lo + (hi - lo) * 0.381966L, m2 = lo + (hi - lo) * 0.618034L;
+      if (on_circle(m1) < on_circle(m2)) hi = m2; else lo = m1;
+    }
+    best = std::min(best, on_circle((lo + hi) / 2));
+  }
+  // The sphere: Fibonacci samples, the best refined by a compass search.
+  std::vector<std::pair<Real, VR>> samples;
+  for (int k = 0; k < kSphereSamples; ++k) {
+    const Real z = 1 - (2 * k + 1) / Real(kSphereSamples), ring = std::sqrt(1 - z * z);
+    const Real angle = k * 2.399963229728653L;
+    const VR w(ring * std::cos(angle), ring * std::sin(angle), z);
+    samples.emplace_back(F(w), w);
+  }
+  std::partial_sort(samples.begin(), samples.begin() + kSphereStarts, samples.end(),
+                    [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (int k = 0; k < kSphereStarts; ++k) {
+    VR w = samples[k].second;
+    Real value = samples[k].first;
+    VR t1 = w.cross(VR::UnitX());
+    if (t1.squaredNorm() < 0.25L) t1 = w.cross(VR::UnitY());
+    t1 /= std::sqrt(t1.squaredNorm());
+    for (Real move = 0.05L; move > kSearchFinalStep;) {
+      const VR t2 = w.cross(t1);
+      bool improved = false;
+      for (int d = 0; d < 8 && !improved; ++d) {
+        const Real a = d * Real(M_PI) / 4;
+        VR trial = w + move * (std::cos(a) * t1 + std::sin(a) * t2);
+        trial /= std::sqrt(trial.squaredNorm());
+        const Real trial_value = F(trial);
+        if (trial_value < value) value = trial_value, w = trial, improved = true;
+      }
+      if (!improved) move /= 2;
+      t1 = t1 - t1.dot(w) * w;
+      t1 /= std::sqrt(t1.squaredNorm());
+    }
+    best = std::min(best, value);
+  }
+  return Real(capsule.radius) + best;
+}
+
 /// Random shapes of size ~0.5 at centres in the unit ball, a disk of radius
 /// 0.2..1, so that a good share of poses intersect.
 template <typename S>
@@ -123,17 +211,21 @@ fcl::Halfspace<S> randomShape(Random& rng, fcl::Halfspace<S>*) {
   return fcl::Halfspace<S>(rng.unitVector().cast<S>(), S(rng.uniform(-0.5, 0.5)));
 }
 template <typename S>
+fcl::Capsule<S> randomShape(Random& rng, fcl::Capsule<S>*) {
+  return fcl::Capsule<S>(S(rng.uniform(0.0, 0.5)), S(rng.uniform(0.0, 2.0)));
+}
+template <typename S>
 fcl::Plane<S> randomShape(Random& rng, fcl::Plane<S>*) {
   return fcl::Plane<S>(rng.unitVector().cast<S>(), S(rng.uniform(-0.5, 0.5)));
 }
 
 template <typename S, typename Shape>
-void checkShape(const char* name, std::uint64_t seed) {
+void checkShape(const char* name, std::uint64_t seed, int poses = kPosesPerShape) {
   SCOPED_TRACE(name);
   Random rng(seed);
   int intersecting = 0;
   double worst = 0;
-  for (int i = 0; i < kPosesPerShape; ++i) {
+  for (int i = 0; i < poses; ++i) {
     const S r = S(rng.uniform(0.2, 1.0));
     const fcl::Transform3<S> X_WD = randomPose<S>(rng, 1.0);
     const fcl::Transform3<S> X_WS = randomPose<S>(rng, 1.0);
@@ -207,9 +299,9 @@ void checkShape(const char* name, std::uint64_t seed) {
       EXPECT_LE((result.getContact(0).normal.template cast<double>() - w).norm(), 1e-6) << trace();
     }
   }
-  std::cout << "  " << name << ": " << intersecting << " intersecting poses of " << kPosesPerShape
+  std::cout << "  " << name << ": " << intersecting << " intersecting poses of " << poses
             << ", largest |PD - PD_ref| / scale " << worst << "\n";
-  EXPECT_GT(intersecting, kPosesPerShape / 10);
+  EXPECT_GT(intersecting, poses / 10);
 }
 
 template <typename S>
@@ -225,6 +317,9 @@ TYPED_TEST(DiskShapePenetration, HalfspaceMatchesReference) {
 }
 TYPED_TEST(DiskShapePenetration, PlaneMatchesReference) {
   checkShape<TypeParam, fcl::Plane<TypeParam>>("plane", 13);
+}
+TYPED_TEST(DiskShapePenetration, CapsuleMatchesReference) {
+  checkShape<TypeParam, fcl::Capsule<TypeParam>>("capsule", 14, kCapsulePoses);
 }
 
 TEST(DiskShapePenetration, HandMadeCases) {

@@ -92,8 +92,8 @@ DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>&
 /// shape, and translating the shape by penetration_depth * normal separates them:
 /// the smallest such translation among the disk's normal and the shape's own
 /// candidate directions (docs/disk_shape_distance.md section 5). It is an upper
-/// bound on the penetration depth, exact for Sphere, Halfspace and Plane
-/// (kExactDiskShapePenetration).
+/// bound on the penetration depth, exact for Sphere, Capsule, Halfspace and
+/// Plane (kExactDiskShapePenetration).
 template <typename S, typename Shape>
 bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact = nullptr);
@@ -103,7 +103,10 @@ bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& s
 /// shortest way out is straight away from the disk point nearest the centre
 /// (depth radius - that distance; along the disk's normal when the centre lies
 /// on the disk); Halfspace: along its outward normal reversed; Plane: along
-/// +-its normal (docs/disk_shape_distance.md, section 5).
+/// +-its normal (docs/disk_shape_distance.md, section 5); Capsule: among the
+/// disk's normals, its ends' nearest and farthest rim points, and the rim
+/// points where the disk's support is normal to the axis
+/// (docs/penetration_depth.md, section 7).
 template <typename Shape>
 constexpr bool kExactDiskShapePenetration = false;
 /// @cond
@@ -113,6 +116,8 @@ template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Halfspace<S>> = true;
 template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Plane<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Capsule<S>> = true;
 /// @endcond
 
 /// Signed distance between the disk and `shape` (kExactDiskShapePenetration
@@ -130,7 +135,7 @@ DiskSignedDistanceResult<S> signedDiskShapeDistance(S radius, const fcl::Transfo
                                                     const fcl::Transform3<S>& X_WS) {
   static_assert(kExactDiskShapePenetration<Shape>,
                 "signedDiskShapeDistance: the penetration depth is exact for Sphere, "
-                "Halfspace and Plane only");
+                "Capsule, Halfspace and Plane only");
   const S nan = std::numeric_limits<S>::quiet_NaN();
   DiskSignedDistanceResult<S> result;
   const DiskShapeDistanceResult<S> apart = diskShapeDistance(radius, X_WD, shape, X_WS);

@@ -61,7 +61,7 @@ struct BoxTraits {
     return BoxTarget{0.5 * box.side.template cast<double>()};
   }
   /// The face normals.
-  static std::array<Vec3, 3> contactDirections(const BoxTarget&) {
+  static std::array<Vec3, 3> contactDirections(const BoxTarget&, const DiskInShape&) {
     return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   }
 };

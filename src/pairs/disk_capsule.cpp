@@ -1,11 +1,21 @@
 // Disk - fcl::Capsule: the capsule is its axis segment inflated by its radius, so
 // the generic solver runs on the segment (projection: clamping along the axis)
-// and the radius is subtracted. docs/disk_shape_distance.md, section 4.
+// and the radius is subtracted (docs/disk_shape_distance.md, section 4); the
+// contact's directions make its depth the exact penetration depth
+// (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
+#include "../trig_roots.h"
+
+#include <vector>
 
 namespace fcl_disk {
 namespace internal {
 namespace {
+
+/// A rim point closer than this (relative to r + |c|) to the capsule's axis has
+/// no horizontal direction of its own: the candidate is normal to the axis and
+/// the rim tangent instead (what the horizontal part tends to as it vanishes).
+constexpr double kOnAxis = 1e-9;
 
 /// The segment {(0, 0, z) : |z| <= half_length} of the capsule frame.
 struct SegmentTarget {
@@ -35,9 +45,53 @@ struct CapsuleTraits {
   static SegmentTarget target(const fcl::Capsule<S>& capsule) {
     return SegmentTarget{0.5 * double(capsule.lz)};
   }
-  /// The axis and the capsule frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const SegmentTarget&) {
-    return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
+  /// The directions among which the shortest separating translation lies
+  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// depth is the exact penetration depth: F(w) = h_disk(w) + h_segment(-w) +
+  /// rho is smooth but at the disk's normals and on the circle w . z = 0 where
+  /// the segment's two ends tie. Away from both, a minimiser has the segment's
+  /// end s as support point and the disk's rim point b along b - s, so b is
+  /// the rim point nearest or farthest s (a critical point of |b - s|). On the
+  /// circle, F = h_disk(w) + rho with w horizontal, stationary where the
+  /// disk's support point b has its horizontal part along w and normal to the
+  /// rim tangent: where K(theta) = b_xy . b'_xy = 0 (docs/penetration_depth.md,
+  /// section 7).
+  static std::vector<Vec3> contactDirections(const SegmentTarget& target,
+                                             const DiskInShape& disk) {
+    std::vector<Vec3> directions;
+    directions.reserve(16);
+    for (const double end : {-target.half_length, target.half_length}) {
+      const Vec3 s(0.0, 0.0, end);
+      const Vec2 radial = disk.inPlane(s - disk.c);
+      const double length = radial.norm();
+      if (!(length > 0.0)) continue;  // s on the disk's axis: the normals decide
+      const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
+      directions.push_back(disk.c + rim_offset - s);  // nearest rim point minus s
+      directions.push_back(disk.c - rim_offset - s);  // farthest
+    }
+    // K's roots along the disk's rim b(theta) = c + r (cos u + sin v).
+    using namespace trig_roots;
+    static const AngleTable<kSamples> angles;
+    std::array<double, kSamples> samples;
+    double terms = 0.0;
+    for (int j = 0; j < kSamples; ++j) {
+      const Vec3 b = disk.c + disk.r * (angles.cos[j] * disk.u + angles.sin[j] * disk.v);
+      const Vec3 db = disk.r * (angles.cos[j] * disk.v - angles.sin[j] * disk.u);
+      samples[j] = b.x() * db.x() + b.y() * db.y();
+      terms = std::max(terms, std::hypot(b.x(), b.y()) * std::hypot(db.x(), db.y()));
+    }
+    forEachRootAngle(TrigPolynomial::fromSamples(samples), kBernsteinNoise * terms,
+                     [&](double cos_theta, double sin_theta) {
+                       const Vec3 b = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
+                       const double rho = std::hypot(b.x(), b.y());
+                       if (rho > kOnAxis * (disk.r + disk.c.norm())) {
+                         directions.emplace_back(b.x(), b.y(), 0.0);
+                       } else {  // b on the axis: horizontal and normal to the rim there
+                         const Vec3 tangent = cos_theta * disk.v - sin_theta * disk.u;
+                         directions.push_back(Vec3::UnitZ().cross(tangent));
+                       }
+                     });
+    return directions;
   }
 };
 

@@ -89,7 +89,7 @@ struct ConeTraits {
     return ConeTarget{double(cone.radius), 0.5 * double(cone.lz)};
   }
   /// The axis and the frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const ConeTarget&) {
+  static std::array<Vec3, 3> contactDirections(const ConeTarget&, const DiskInShape&) {
     return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
   }
 };

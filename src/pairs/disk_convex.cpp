@@ -303,7 +303,7 @@ struct ConvexTraits {
     return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
   }
   /// The face normals.
-  static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target) {
+  static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target, const DiskInShape&) {
     std::vector<Vec3> normals;
     for (const ConvexFace& face : target.faces) normals.push_back(face.unit_normal);
     return normals;

@@ -56,7 +56,7 @@ struct CylinderTraits {
     return CylinderTarget{double(cylinder.radius), 0.5 * double(cylinder.lz)};
   }
   /// The axis and the frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const CylinderTarget&) {
+  static std::array<Vec3, 3> contactDirections(const CylinderTarget&, const DiskInShape&) {
     return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
   }
 };

@@ -137,7 +137,7 @@ struct EllipsoidTraits {
     return EllipsoidTarget{e};
   }
   /// The principal axes.
-  static std::array<Vec3, 3> contactDirections(const EllipsoidTarget&) {
+  static std::array<Vec3, 3> contactDirections(const EllipsoidTarget&, const DiskInShape&) {
     return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
   }
 };

@@ -54,7 +54,7 @@ struct TriangleTraits {
                                              triangle.c.template cast<double>())};
   }
   /// The triangle's normal.
-  static std::array<Vec3, 1> contactDirections(const TriangleTarget& target) {
+  static std::array<Vec3, 1> contactDirections(const TriangleTarget& target, const DiskInShape&) {
     return {target.triangle.unit_normal};
   }
 };
