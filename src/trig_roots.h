@@ -247,7 +247,8 @@ constexpr int kMaxChartCandidates = 2 * kMaxIntervals + 2 * kPolyDegree;
 /// interval's ends are candidates where |p| is within `noise`, and the interval
 /// is decided when its coefficients show
 /// - no sign change and none within `noise` of zero: |p| > noise, no root;
-/// - one sign change between its ends: one root, bracketed and polished;
+/// - one sign change between its ends, both clear of the noise: one root,
+///   bracketed and polished;
 /// - otherwise, when the coefficients of p' (n (b_{i+1} - b_i)) change sign at
 ///   most once: p has at most one extremum there, found by Newton within its
 ///   bracket and taken as a candidate (it marks a double root, or two roots
@@ -263,11 +264,13 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
   const auto add = [&](double t) {
     if (count < kMaxChartCandidates) out[count++] = t;
   };
-  // The root of p in [lo, hi] if p changes sign over it (values given).
+  // The root of p in [lo, hi] if p changes sign over it (values given). Only
+  // signs above the noise count: an end within it is a candidate of its own
+  // (added with its interval), and on a monotone piece no other root can hide
+  // beside it; a bracket from a rounding-level sign would find that end's
+  // rounding instead of the root.
   const auto rootIfSignChange = [&](double lo, double hi, double p_lo, double p_hi) {
-    if (p_lo == 0.0) {
-      add(lo);
-    } else if (p_hi != 0.0 && (p_lo < 0) != (p_hi < 0)) {
+    if (std::abs(p_lo) > noise && std::abs(p_hi) > noise && (p_lo < 0) != (p_hi < 0)) {
       add(rootInBracket(p.data(), dp.data(), kPolyDegree, lo, hi, p_lo));
     }
   };
@@ -298,7 +301,8 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
       for (const double x : b) smallest = std::min(smallest, std::abs(x));
       if (smallest > noise) continue;  // |p| > noise on the interval: no root
     }
-    if (changes == 1 && b[0] != 0.0 && b[kPolyDegree] != 0.0) {  // the ends differ in sign
+    if (changes == 1 && std::abs(b[0]) > noise && std::abs(b[kPolyDegree]) > noise) {
+      // The ends differ in sign, each clearly.
       rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
       continue;
     }
@@ -321,7 +325,7 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
       add(extremum);
       const double p_extremum = evaluate(p.data(), kPolyDegree, extremum);
       rootIfSignChange(interval.lo, extremum, b[0], p_extremum);
-      if (p_extremum != 0.0) rootIfSignChange(extremum, interval.hi, p_extremum, b[kPolyDegree]);
+      rootIfSignChange(extremum, interval.hi, p_extremum, b[kPolyDegree]);
       continue;
     }
     if (interval.depth >= kMaxSubdivisions || size + 2 > int(stack.size())) {

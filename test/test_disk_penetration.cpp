@@ -1434,6 +1434,64 @@ TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
             << "\n";
 }
 
+/// Nearly parallel (or antiparallel) overlapping disks, tilted 1e-4..1e-1 rad,
+/// centres apart in the plane: minimisers next to the normals, and double roots
+/// of Q whose rounding-level sign sits beside a simple root. The first pose is
+/// the one fuzz_disk_intersection found (corpus
+/// regression-depth-noise-sign-beside-a-double-root), both orders.
+TEST(NearlyParallelPairs, MatchReference) {
+  using Pose = fcl::Transform3d;
+  std::vector<std::tuple<double, Pose, double, Pose>> cases;
+  {
+    Pose A = Pose::Identity(), B = Pose::Identity();
+    A.linear() << -0.98757087650754283, -0.12263991189188413, -0.098301657591698066,
+        0.13839252542346403, -0.38202058194234123, -0.91373288431540611, 0.074506863986081306,
+        -0.91598020010455816, 0.39424484807714788;
+    A.translation() << 4.3852560338564217e-07, 2.384185791015625e-07, 0;
+    B.linear() << -0.98463303826300386, 0.14412448397799871, 0.098620044002436277,
+        0.14674818699744493, 0.37669818551179618, 0.91463842399337458, 0.094671799253683853,
+        0.91505552298764725, -0.39205948563435356;
+    B.translation() << 0.73847521722285625, -0.11006090182950461, -0.071003849440262889;
+    cases.emplace_back(1.0, A, 0.75, B);
+  }
+  fcl_disk_test::Random rng(kSeed + 79);
+  constexpr int kNearlyParallelCases = 300;
+  while (int(cases.size()) < kNearlyParallelCases) {
+    const double r1 = rng.uniform(0.3, 2.0), r2 = rng.uniform(0.3, 2.0);
+    Pose A = Pose::Identity(), B = Pose::Identity();
+    A.linear() = rng.rotation();
+    const Eigen::Vector3d axis = A.linear().col(0) * std::cos(rng.uniform(0, 2 * M_PI)) +
+                                 A.linear().col(1) * std::sin(rng.uniform(0, 2 * M_PI));
+    const double tilt = rng.logUniform(1e-4, 1e-1) + (rng.chance(0.5) ? M_PI : 0.0);
+    B.linear() = Eigen::AngleAxisd(tilt, axis.normalized()).toRotationMatrix() * A.linear() *
+                 Eigen::AngleAxisd(rng.uniform(0, 2 * M_PI), Eigen::Vector3d::UnitZ())
+                     .toRotationMatrix();
+    const double offset = rng.uniform(0, r1 + r2);
+    const double angle = rng.uniform(0, 2 * M_PI);
+    B.translation() = offset * (std::cos(angle) * A.linear().col(0) + std::sin(angle) * A.linear().col(1)) +
+                      rng.uniform(-1e-2, 1e-2) * A.linear().col(2);
+    if (!fcl_disk::intersectDisks(r1, A, r2, B)) continue;
+    cases.emplace_back(r1, A, r2, B);
+  }
+  double worst = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [r1, A, r2, B] = cases[i];
+    const auto reference = ref::referencePenetration(r1, A, r2, B);
+    const double scale = double(reference.scale);
+    for (const bool swap : {false, true}) {
+      const auto answer = swap ? fcl_disk::diskPenetration(r2, B, r1, A)
+                               : fcl_disk::diskPenetration(r1, A, r2, B);
+      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
+      EXPECT_LE(error, Tol<double>::kPdRelative)
+          << "case " << i << (swap ? " swapped" : "") << ": PD " << -answer.signed_distance
+          << " reference " << double(reference.pd);
+      worst = std::max(worst, error);
+    }
+  }
+  std::cout << "  " << cases.size() << " nearly parallel pairs: largest |PD - PD_ref| / scale "
+            << worst << "\n";
+}
+
 TEST(InvalidInput, NaNAndNoCrashDouble) { checkInvalidInput<double>(); }
 TEST(InvalidInput, NaNAndNoCrashFloat) { checkInvalidInput<float>(); }
 
