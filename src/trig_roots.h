@@ -319,7 +319,11 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
       rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
       continue;
     }
-    if (derivative_changes == 1 && derivative[0] != 0.0 && derivative[kPolyDegree - 1] != 0.0) {
+    // The extremum's bracket needs the derivative's signs at both ends clear
+    // of the noise too: next to a double root at an end, p' is at rounding
+    // level there, and a bracket from its sign finds that end again.
+    if (derivative_changes == 1 && std::abs(derivative[0]) > noise &&
+        std::abs(derivative[kPolyDegree - 1]) > noise) {
       const double extremum = rootInBracket(dp.data(), ddp.data(), kPolyDegree - 1, interval.lo,
                                             interval.hi, derivative[0]);
       add(extremum);

@@ -1436,9 +1436,10 @@ TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
 
 /// Nearly parallel (or antiparallel) overlapping disks, tilted 1e-4..1e-1 rad,
 /// centres apart in the plane: minimisers next to the normals, and double roots
-/// of Q whose rounding-level sign sits beside a simple root. The first pose is
-/// the one fuzz_disk_intersection found (corpus
-/// regression-depth-noise-sign-beside-a-double-root), both orders.
+/// of Q whose rounding-level sign or slope sits beside a simple root. The first
+/// poses are the ones fuzz_disk_intersection found (corpus
+/// regression-depth-noise-sign-beside-a-double-root,
+/// regression-depth-noise-slope-at-a-double-root), both orders.
 TEST(NearlyParallelPairs, MatchReference) {
   using Pose = fcl::Transform3d;
   std::vector<std::tuple<double, Pose, double, Pose>> cases;
@@ -1452,6 +1453,16 @@ TEST(NearlyParallelPairs, MatchReference) {
         0.14674818699744493, 0.37669818551179618, 0.91463842399337458, 0.094671799253683853,
         0.91505552298764725, -0.39205948563435356;
     B.translation() << 0.73847521722285625, -0.11006090182950461, -0.071003849440262889;
+    cases.emplace_back(1.0, A, 0.75, B);
+    // regression-depth-noise-slope-at-a-double-root: the same kind, where Q's
+    // derivative is at rounding level at a double root that ends an interval.
+    A.linear() << -0.98637267101094284, -0.12504822563495493, -0.10692004091042548,
+        0.14231943926177043, -0.32244547707262261, -0.93582802454490721, 0.082547750368819228,
+        -0.93829198844547201, 0.33584819982856706;
+    B.linear() << -0.98639783051277019, 0.12468575316134521, 0.1071110774770177,
+        0.14218299320681818, 0.3202261343179163, 0.93661049499914995, 0.082482218704697199,
+        0.93909993390394353, -0.33359855775941055;
+    B.translation() << 0.739798811410181, -0.10663700648653449, -0.061861664028522723;
     cases.emplace_back(1.0, A, 0.75, B);
   }
   fcl_disk_test::Random rng(kSeed + 79);
