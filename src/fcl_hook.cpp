@@ -129,6 +129,15 @@ void keepIfNearer(fcl::DistanceResult<S>& result, S distance, const CollisionGeo
   result.nearest_points[1] = p2;
 }
 
+/// Whether a signed answer may be minus this depth. FCL's entry, for the indep
+/// solver, answers a negative distance by asking collide() for a contact deeper
+/// than numeric_limits<S>::min() and asserts that one exists: a depth not above
+/// that (min() itself, a subnormal, 0) is reported as touching, distance 0.
+template <typename S>
+bool isReportableDepth(S depth) {
+  return depth > std::numeric_limits<S>::min();
+}
+
 template <typename S>
 S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk<S>& disk2,
                      const Transform3<S>& X_W2, const fcl::DistanceRequest<S>& request,
@@ -149,9 +158,11 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
     // re-asks collide() for a contact whenever the answer is negative.
     const DiskSignedDistanceResult<S> penetration =
         diskPenetration(disk1.radius, X_W1, disk2.radius, X_W2);
-    keepIfNearer(result, penetration.signed_distance, &disk1, &disk2, penetration.p_W1,
-                 penetration.p_W2);
-    return result.min_distance;
+    if (isReportableDepth(-penetration.signed_distance)) {
+      keepIfNearer(result, penetration.signed_distance, &disk1, &disk2, penetration.p_W1,
+                   penetration.p_W2);
+      return result.min_distance;
+    }
   }
   // Overlap, unsigned: distance 0 with a common point as both nearest points.
   keepIfNearer(result, answer.distance, &disk1, &disk2, answer.p_W1, answer.p_W2);
@@ -263,9 +274,11 @@ S answerDiskShapeDistance(const Disk<S>& disk, const Transform3<S>& X_WD, const 
         diskShapeIntersect(disk.radius, X_WD, shape, X_WS)) {
       const DiskSignedDistanceResult<S> signed_answer =
           signedDiskShapeDistance(disk.radius, X_WD, shape, X_WS);
-      distance = signed_answer.signed_distance;
-      p_disk = signed_answer.p_W1;
-      p_shape = signed_answer.p_W2;
+      if (isReportableDepth(-signed_answer.signed_distance)) {
+        distance = signed_answer.signed_distance;
+        p_disk = signed_answer.p_W1;
+        p_shape = signed_answer.p_W2;
+      }
     }
   }
   // Otherwise an overlap is distance 0 with a common point as both nearest points.

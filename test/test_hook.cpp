@@ -157,6 +157,65 @@ TEST(Hook, OverlapGivesZeroUnsignedAndMinusTheDepthSigned) {
   }
 }
 
+/// A penetration depth not above the smallest normal S (a disk tilted by a few
+/// times numeric_limits<S>::min() through another, or whose rotation's defect
+/// is min()) is reported as touching: FCL's entry, for the indep
+/// solver, answers a negative signed distance by asking collide() for a contact
+/// deeper than numeric_limits::min() and asserts one exists (Debian's libfcl
+/// keeps its asserts: the process would abort). Corpus
+/// regression-signed-subnormal-depth-indep of fuzz_hook.
+template <typename S>
+void checkSubnormalPenetration() {
+  using X = fcl::Transform3<S>;
+  auto d1 = std::make_shared<fcl_disk::Disk<S>>(S(1));
+  auto d2 = std::make_shared<fcl_disk::Disk<S>>(S(0.125));
+  X X2 = X::Identity();
+  // Tilted by 2 min() about y: the depth is 0.125 sin(tilt), below min().
+  X2.linear()(2, 0) = 2 * std::numeric_limits<S>::min();
+  X2.linear()(0, 2) = -2 * std::numeric_limits<S>::min();
+  const S depth = -fcl_disk::diskPenetration(S(1), X::Identity(), S(0.125), X2).signed_distance;
+  ASSERT_LT(depth, std::numeric_limits<S>::min());
+  // In float the depth comes out subnormal and non-zero (computed in double,
+  // rounded to float); in double its square underflows in |P w| and it is 0.
+  if (std::is_same<S, float>::value) {
+    ASSERT_GT(depth, S(0));
+  }
+  fcl::CollisionObject<S> a(d1, X::Identity()), b(d2, X2);
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    fcl::DistanceRequest<S> request(true);
+    request.enable_signed_distance = true;
+    request.gjk_solver_type = solver;
+    fcl::DistanceResult<S> result;
+    EXPECT_EQ(fcl::distance(&a, &b, request, result), S(0));
+    EXPECT_EQ(result.min_distance, S(0));
+  }
+}
+
+TEST(Hook, SubnormalPenetrationIsTouchingForEverySolver) {
+  checkSubnormalPenetration<double>();
+  checkSubnormalPenetration<float>();
+  // A depth of exactly FLT_MIN (corpus regression-signed-min-depth-indep): a
+  // disk whose rotation is off orthonormal by FLT_MIN, concentric with a
+  // smaller disk in its plane.
+  using X = fcl::Transform3f;
+  X X1 = X::Identity(), X2 = X::Identity();
+  X1.linear() << 0, 0, 1, 1, 0, 0, 0, 1, 0;
+  X2.linear() << 0, 0, 1, 1, 0, 0, 0, 1, std::numeric_limits<float>::min();
+  X1.translation().setConstant(-431.68359375f);
+  X2.translation().setConstant(-431.68359375f);
+  fcl::CollisionObjectf a(std::make_shared<fcl_disk::Diskf>(1.0f), X1),
+      b(std::make_shared<fcl_disk::Diskf>(431.68359375f), X2);
+  ASSERT_EQ(-fcl_disk::diskPenetration(1.0f, X1, 431.68359375f, X2).signed_distance,
+            std::numeric_limits<float>::min());
+  for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
+    fcl::DistanceRequestf request(true);
+    request.enable_signed_distance = true;
+    request.gjk_solver_type = solver;
+    fcl::DistanceResultf result;
+    EXPECT_EQ(fcl::distance(&a, &b, request, result), 0.0f);
+  }
+}
+
 TEST(Hook, CollideReportsOneContactOnBothDisks) {
   auto d1 = std::make_shared<fcl_disk::Diskd>(1.0);
   auto d2 = std::make_shared<fcl_disk::Diskd>(0.8);
