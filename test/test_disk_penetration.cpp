@@ -1298,6 +1298,32 @@ void checkInvalidInput() {
   }
 }
 
+/// Disk pairs in double: (r1, X_W1, r2, X_W2).
+using PosedPairs = std::vector<std::tuple<double, fcl::Transform3d, double, fcl::Transform3d>>;
+
+/// diskPenetration on every pair, both orders, within the PD bound of the
+/// long-double reference; prints the largest error and the pair it came from.
+void expectPenetrationMatchesReference(const PosedPairs& cases, const char* what) {
+  int worst_case = -1;
+  double worst = 0;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& [r1, X1, r2, X2] = cases[i];
+    const auto reference = ref::referencePenetration(r1, X1, r2, X2);
+    const double scale = double(reference.scale);
+    for (const bool swap : {false, true}) {
+      const auto answer = swap ? fcl_disk::diskPenetration(r2, X2, r1, X1)
+                               : fcl_disk::diskPenetration(r1, X1, r2, X2);
+      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
+      EXPECT_LE(error, Tol<double>::kPdRelative)
+          << what << " case " << i << (swap ? " swapped" : "") << ": PD "
+          << -answer.signed_distance << " reference " << double(reference.pd);
+      if (error > worst) worst = error, worst_case = int(i);
+    }
+  }
+  std::cout << "  " << cases.size() << " " << what << ": largest |PD - PD_ref| / scale " << worst
+            << " (case " << worst_case << ")\n";
+}
+
 /// Disks of very different sizes, the small one crossing the large one next to
 /// its rim (where the large rim passes near the small disk's axis), both
 /// orders, against the reference: the search must follow the smaller rim
@@ -1305,7 +1331,7 @@ void checkInvalidInput() {
 /// fuzz_disk_intersection found (corpus regression-depth-tiny-disk-on-huge-rim).
 TEST(RadiusRatios, SmallDiskAcrossALargeRimMatchesReference) {
   using Pose = fcl::Transform3d;
-  std::vector<std::tuple<double, Pose, double, Pose>> cases;
+  PosedPairs cases;
   {
     Pose X1 = Pose::Identity(), X2 = Pose::Identity();
     X1.linear() << 0.67098272989643681, -0.55247692072578025, 0.49452141333423089,
@@ -1333,24 +1359,7 @@ TEST(RadiusRatios, SmallDiskAcrossALargeRimMatchesReference) {
     if (!fcl_disk::intersectDisks(small, X_small, big, X_big)) continue;
     cases.emplace_back(small, X_small, big, X_big);
   }
-  int worst_case = -1;
-  double worst = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto& [r1, X1, r2, X2] = cases[i];
-    const auto reference = ref::referencePenetration(r1, X1, r2, X2);
-    const double scale = double(reference.scale);
-    for (const bool swap : {false, true}) {
-      const auto answer = swap ? fcl_disk::diskPenetration(r2, X2, r1, X1)
-                               : fcl_disk::diskPenetration(r1, X1, r2, X2);
-      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
-      EXPECT_LE(error, Tol<double>::kPdRelative)
-          << "case " << i << (swap ? " swapped" : "") << ": PD " << -answer.signed_distance
-          << " reference " << double(reference.pd);
-      if (error > worst) worst = error, worst_case = int(i);
-    }
-  }
-  std::cout << "  " << cases.size() << " pairs of radius ratio 1e-6..1e-1 (and 1.3e-5): largest "
-            << "|PD - PD_ref| / scale " << worst << " (case " << worst_case << ")\n";
+  expectPenetrationMatchesReference(cases, "pairs of radius ratio 1e-6..1e-1 (and 1.3e-5)");
 }
 
 /// Pairs symmetric under a reflection (disk 1 in the plane x = 0, disk 2
@@ -1363,7 +1372,7 @@ TEST(RadiusRatios, SmallDiskAcrossALargeRimMatchesReference) {
 /// regression-depth-root-beside-a-double-root), the others random, both orders.
 TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
   using Pose = fcl::Transform3d;
-  std::vector<std::tuple<double, Pose, double, Pose>> cases;
+  PosedPairs cases;
   Pose X1 = Pose::Identity();
   X1.linear() << 0, 0, 1, 1, 0, 0, 0, 1, 0;  // normal +x
   {
@@ -1415,23 +1424,7 @@ TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
     if (!fcl_disk::intersectDisks(r1, X1, r2, X2)) continue;
     cases.emplace_back(r1, X1, r2, X2);
   }
-  double worst = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto& [r1, A, r2, B] = cases[i];
-    const auto reference = ref::referencePenetration(r1, A, r2, B);
-    const double scale = double(reference.scale);
-    for (const bool swap : {false, true}) {
-      const auto answer = swap ? fcl_disk::diskPenetration(r2, B, r1, A)
-                               : fcl_disk::diskPenetration(r1, A, r2, B);
-      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
-      EXPECT_LE(error, Tol<double>::kPdRelative)
-          << "case " << i << (swap ? " swapped" : "") << ": PD " << -answer.signed_distance
-          << " reference " << double(reference.pd);
-      worst = std::max(worst, error);
-    }
-  }
-  std::cout << "  " << cases.size() << " symmetric pairs: largest |PD - PD_ref| / scale " << worst
-            << "\n";
+  expectPenetrationMatchesReference(cases, "symmetric pairs");
 }
 
 /// Nearly parallel (or antiparallel) overlapping disks, tilted 1e-4..1e-1 rad,
@@ -1442,7 +1435,7 @@ TEST(SymmetricPairs, DoubleRootsOnTheSymmetryPlaneMatchReference) {
 /// regression-depth-noise-slope-at-a-double-root), both orders.
 TEST(NearlyParallelPairs, MatchReference) {
   using Pose = fcl::Transform3d;
-  std::vector<std::tuple<double, Pose, double, Pose>> cases;
+  PosedPairs cases;
   {
     Pose A = Pose::Identity(), B = Pose::Identity();
     A.linear() << -0.98757087650754283, -0.12263991189188413, -0.098301657591698066,
@@ -1484,23 +1477,7 @@ TEST(NearlyParallelPairs, MatchReference) {
     if (!fcl_disk::intersectDisks(r1, A, r2, B)) continue;
     cases.emplace_back(r1, A, r2, B);
   }
-  double worst = 0;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto& [r1, A, r2, B] = cases[i];
-    const auto reference = ref::referencePenetration(r1, A, r2, B);
-    const double scale = double(reference.scale);
-    for (const bool swap : {false, true}) {
-      const auto answer = swap ? fcl_disk::diskPenetration(r2, B, r1, A)
-                               : fcl_disk::diskPenetration(r1, A, r2, B);
-      const double error = std::abs(-answer.signed_distance - double(reference.pd)) / scale;
-      EXPECT_LE(error, Tol<double>::kPdRelative)
-          << "case " << i << (swap ? " swapped" : "") << ": PD " << -answer.signed_distance
-          << " reference " << double(reference.pd);
-      worst = std::max(worst, error);
-    }
-  }
-  std::cout << "  " << cases.size() << " nearly parallel pairs: largest |PD - PD_ref| / scale "
-            << worst << "\n";
+  expectPenetrationMatchesReference(cases, "nearly parallel pairs");
 }
 
 TEST(InvalidInput, NaNAndNoCrashDouble) { checkInvalidInput<double>(); }
