@@ -268,17 +268,34 @@ bool parseOptions(int argc, char** argv, Options* options) {
 // ---------------------------------------------------------------------------
 // Solvers.
 
+const double kHeights[] = {1e-2, 1e-4, 1e-6};
+
+/// The objects a disk pair is queried through: the two Disks, and FCL's
+/// Cylinder(r, h) at the same poses for every height (FCL's Cylinder is centred
+/// on its frame, axis +z: the disk thickened by h/2 on each side).
+struct PairObjects {
+  std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
+  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
+
+  void build(double r1, const fcl::Transform3d& X_W1, double r2, const fcl::Transform3d& X_W2) {
+    disk1 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(r1), X_W1);
+    disk2 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(r2), X_W2);
+    for (double h : kHeights) {
+      cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
+          std::make_shared<fcl::Cylinderd>(r1, h), X_W1));
+      cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
+          std::make_shared<fcl::Cylinderd>(r2, h), X_W2));
+    }
+  }
+};
+
 /// One prepared pair: the case, its reference, and the objects every solver needs.
-struct PreparedPair {
+struct PreparedPair : PairObjects {
   Case c;
   fam::Family family;
   double reference = 0;  ///< reference distance (rounded to double)
   double scale = 1;      ///< r1 + r2 + |c1 - c2|
-  std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
 };
-
-const double kHeights[] = {1e-2, 1e-4, 1e-6};
 constexpr int kNumHeights = 3;
 
 enum class Kind { disk_fcl, disk_direct, gjk, fcl_entry };
@@ -426,16 +443,7 @@ PreparedPair preparePair(Case c, fam::Family family) {
   p.reference = static_cast<double>(r.distance);
   p.scale = fam::sceneScale(c);
   p.family = family;
-  p.disk1 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r1),
-                                                    c.X_W1);
-  p.disk2 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r2),
-                                                    c.X_W2);
-  for (double h : kHeights) {
-    p.cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
-        std::make_shared<fcl::Cylinderd>(c.r1, h), c.X_W1));
-    p.cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
-        std::make_shared<fcl::Cylinderd>(c.r2, h), c.X_W2));
-  }
+  p.build(c.r1, c.X_W1, c.r2, c.X_W2);
   p.c = std::move(c);
   return p;
 }
@@ -1015,29 +1023,17 @@ std::vector<PenQuery> makePenQueries() {
 }
 
 /// One prepared pair: the case, its PD (reference and fcl_disk's), the objects.
-struct PenPair {
+struct PenPair : PairObjects {
   pen::PenCase c;
   double reference = std::nan("");  ///< PD_ref (rounded to double); NaN unreferenced
   double fcl_disk_pd = 0;           ///< -diskPenetration().signed_distance
-  std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
-  std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
 };
 
 PenPair preparePenPair(pen::PenCase c) {
   PenPair p;
   p.fcl_disk_pd = -fcl_disk::diskPenetration(c.r1, c.X_W1, c.r2, c.X_W2).signed_distance;
-  p.disk1 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r1),
-                                                    c.X_W1);
-  p.disk2 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(c.r2),
-                                                    c.X_W2);
-  // FCL's Cylinder(r, h) is centred on its frame, axis +z: the disk thickened
-  // by h/2 on each side, so its PD exceeds the disk's by up to h.
-  for (double h : kHeights) {
-    p.cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
-        std::make_shared<fcl::Cylinderd>(c.r1, h), c.X_W1));
-    p.cyl2.push_back(std::make_unique<fcl::CollisionObjectd>(
-        std::make_shared<fcl::Cylinderd>(c.r2, h), c.X_W2));
-  }
+  // A cylinder's PD exceeds the disk's by up to h.
+  p.build(c.r1, c.X_W1, c.r2, c.X_W2);
   p.c = std::move(c);
   return p;
 }
