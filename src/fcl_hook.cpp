@@ -269,11 +269,13 @@ S answerDiskShapeDistance(const Disk<S>& disk, const Transform3<S>& X_WD, const 
   S distance = answer.distance;
   if constexpr (kExactDiskShapePenetration<Shape>) {
     // Overlap, signed: minus the exact penetration depth with the deepest
-    // points, as for disk pairs (decided as collide() decides).
+    // points, as for disk pairs (decided as collide() decides), from the
+    // contact that decision computes.
+    DiskContact<S> contact;
     if (request.enable_signed_distance && !(answer.distance > 0) &&
-        diskShapeIntersect(disk.radius, X_WD, shape, X_WS)) {
+        diskShapeIntersect(disk.radius, X_WD, shape, X_WS, &contact)) {
       const DiskSignedDistanceResult<S> signed_answer =
-          signedDiskShapeDistance(disk.radius, X_WD, shape, X_WS);
+          fcl_disk::detail::penetrationFromContact(disk.radius, X_WD, contact);
       if (isReportableDepth(-signed_answer.signed_distance)) {
         distance = signed_answer.signed_distance;
         p_disk = signed_answer.p_W1;

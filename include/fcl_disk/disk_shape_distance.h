@@ -120,6 +120,35 @@ template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Capsule<S>> = true;
 /// @endcond
 
+/// @cond
+namespace detail {
+/// The signed answer of a disk and a kExactDiskShapePenetration shape that
+/// intersect, from their diskShapeIntersect() contact (the disk as object 1):
+/// minus the depth, its direction, the disk's support point along it and the
+/// shape's point the depth behind it (signedDiskShapeDistance, the hook).
+template <typename S>
+DiskSignedDistanceResult<S> penetrationFromContact(S radius, const fcl::Transform3<S>& X_WD,
+                                                   const DiskContact<S>& contact) {
+  DiskSignedDistanceResult<S> result;
+  const fcl::Vector3<S>& w = contact.normal;
+  // The disk's support point along w: on its rim, unless w is within
+  // kAlongNormal rad of its normal, when (up to that angle times the radius)
+  // every point ties and the contact point, a point of the disk, is one.
+  constexpr S kAlongNormal = S(1e-9);
+  const fcl::Matrix3<S> R = X_WD.linear();
+  const S a = R.col(0).dot(w), b = R.col(1).dot(w);
+  const S in_plane = std::sqrt(a * a + b * b);
+  result.p_W1 = in_plane > kAlongNormal ? fcl::Vector3<S>(X_WD.translation() +
+                                                     (radius / in_plane) * (a * R.col(0) + b * R.col(1)))
+                                   : contact.pos;
+  result.signed_distance = -contact.penetration_depth;
+  result.direction = w;
+  result.p_W2 = result.p_W1 - contact.penetration_depth * w;
+  return result;
+}
+}  // namespace detail
+/// @endcond
+
 /// Signed distance between the disk and `shape` (kExactDiskShapePenetration
 /// shapes), with the disk as object 1: diskShapeDistance() when apart
 /// (direction = (p_W2 - p_W1) / d); minus the exact penetration depth when they
@@ -155,21 +184,7 @@ DiskSignedDistanceResult<S> signedDiskShapeDistance(S radius, const fcl::Transfo
     if (gap.norm() > 0) result.direction = gap.normalized();
     return result;
   }
-  const fcl::Vector3<S>& w = contact.normal;
-  // The disk's support point along w: on its rim, unless w is within
-  // kAlongNormal rad of its normal, when (up to that angle times the radius)
-  // every point ties and the contact point, a point of the disk, is one.
-  constexpr S kAlongNormal = S(1e-9);
-  const fcl::Matrix3<S> R = X_WD.linear();
-  const S a = R.col(0).dot(w), b = R.col(1).dot(w);
-  const S in_plane = std::sqrt(a * a + b * b);
-  result.p_W1 = in_plane > kAlongNormal ? fcl::Vector3<S>(X_WD.translation() +
-                                                     (radius / in_plane) * (a * R.col(0) + b * R.col(1)))
-                                   : contact.pos;
-  result.signed_distance = -contact.penetration_depth;
-  result.direction = w;
-  result.p_W2 = result.p_W1 - contact.penetration_depth * w;
-  return result;
+  return detail::penetrationFromContact(radius, X_WD, contact);
 }
 
 }  // namespace fcl_disk
