@@ -4,10 +4,12 @@
 
 #include <array>
 #include <cmath>
+#include <functional>
 #include <complex>
 #include <limits>
 
 #include "fcl_disk/exact_distance.h"
+#include "disk_penetration_candidates.h"
 #include "pair_in_frame1.h"
 #include "trig_roots.h"
 
@@ -72,13 +74,17 @@ struct Penetration {
 
 class PenetrationSearch {
  public:
-  explicit PenetrationSearch(const PairInFrame1& pair)
-      : c_(pair.c), u_(pair.R.col(0)), v_(pair.R.col(1)), r1_(pair.r1), r2_(pair.r2) {}
+  /// `sink`, when given, also receives every candidate direction.
+  explicit PenetrationSearch(const PairInFrame1& pair,
+                             const std::function<void(const Vec3&)>* sink = nullptr)
+      : c_(pair.c), u_(pair.R.col(0)), v_(pair.R.col(1)), r1_(pair.r1), r2_(pair.r2),
+        sink_(sink) {}
 
   /// F(w) = -c.w + r1 |P1 w| + r2 |P2 w|: translating disk 2 by t w separates
   /// the disks for every t > F(w). Keeps the smallest, with the rim points
   /// (b of disk 1, a of disk 2) the direction came from, if any.
   void consider(const Vec3& w, const Vec3* b = nullptr, const Vec3* a = nullptr) {
+    if (sink_) (*sink_)(w);
     const double p1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
     const double in_plane2_u = u_.dot(w), in_plane2_v = v_.dot(w);
     const double value = -c_.dot(w) + r1_ * p1 +
@@ -201,6 +207,7 @@ class PenetrationSearch {
   Vec3 c_, u_, v_;
   double r1_, r2_;
   Best best_;
+  const std::function<void(const Vec3&)>* sink_;
 };
 
 /// The penetration with its witnesses. From a rim pair: its two rim points
@@ -236,32 +243,10 @@ Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Bes
 }
 
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
-/// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
-/// which only changes the order of the kinks so that the tie-break is the
-/// caller's +n1 either way.
-Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
-  PenetrationSearch search(pair);
-  // Disk 2's kinks are where |P2 w| = sqrt((u.w)^2 + (v.w)^2) vanishes, along
-  // u x v: R's third column only to within an accepted rotation's defect.
-  const Vec3 n2 = pair.R.col(0).cross(pair.R.col(1)).normalized();
-  // The kinks first: their order is the documented tie-break (the caller's
-  // +n1, -n1, +n2, -n2).
-  if (swapped) {
-    for (const Vec3& kink : {Vec3(-n2), n2, Vec3(-Vec3::UnitZ()), Vec3(Vec3::UnitZ())}) {
-      search.consider(kink);
-    }
-  } else {
-    for (const Vec3& kink : {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), n2, Vec3(-n2)}) {
-      search.consider(kink);
-    }
-  }
-  // PD >= 0 for disks that share a point and every F(w) >= PD: a kink at 0 to
-  // rounding (coplanar overlapping disks, a rim on the other's face) is the
-  // minimum. (Apart pairs have min F = -d < 0: only touching ones stop here.)
-  if (std::abs(search.best().value) <= kZeroDepth) {
-    return withWitnesses(pair, search.best());
-  }
-
+/// The rim-pair candidates of docs/penetration_depth.md section 2: the
+/// directions each root of Q gives (or, Q vanishing, kFixedAnglesWhenQVanishes
+/// angles), offered to `search`.
+void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search) {
   // Q(theta) = rho^2 L^2 - r1^2 K^2 along disk 2's rim a(theta) = c + r2 (cos u + sin v).
   const Vec3& c = pair.c;
   const Vec3 u = pair.R.col(0), v = pair.R.col(1);
@@ -292,8 +277,7 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
     for (int k = 0; k < kFixedAnglesWhenQVanishes; ++k) {
       search.considerRimAngle(angles.cos[k], angles.sin[k]);
     }
-    search.polishBestRimPair();
-    return withWitnesses(pair, search.best());
+    return;
   }
 
   // Candidate angles: the roots of Q, and where it may have a double root.
@@ -301,9 +285,56 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
     search.considerRimAngle(cos_theta, sin_theta);
   });
 
+}
+
+/// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
+/// which only changes the order of the kinks so that the tie-break is the
+/// caller's +n1 either way.
+Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
+  PenetrationSearch search(pair);
+  // Disk 2's kinks are where |P2 w| = sqrt((u.w)^2 + (v.w)^2) vanishes, along
+  // u x v: R's third column only to within an accepted rotation's defect.
+  const Vec3 n2 = pair.R.col(0).cross(pair.R.col(1)).normalized();
+  // The kinks first: their order is the documented tie-break (the caller's
+  // +n1, -n1, +n2, -n2).
+  if (swapped) {
+    for (const Vec3& kink : {Vec3(-n2), n2, Vec3(-Vec3::UnitZ()), Vec3(Vec3::UnitZ())}) {
+      search.consider(kink);
+    }
+  } else {
+    for (const Vec3& kink : {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), n2, Vec3(-n2)}) {
+      search.consider(kink);
+    }
+  }
+  // PD >= 0 for disks that share a point and every F(w) >= PD: a kink at 0 to
+  // rounding (coplanar overlapping disks, a rim on the other's face) is the
+  // minimum. (Apart pairs have min F = -d < 0: only touching ones stop here.)
+  if (std::abs(search.best().value) <= kZeroDepth) {
+    return withWitnesses(pair, search.best());
+  }
+
+  considerRimCandidates(pair, search);
   search.polishBestRimPair();
   return withWitnesses(pair, search.best());
 }
+
+}  // namespace
+
+namespace internal {
+
+void forEachDiskPairPenetrationCandidate(const PairInFrame1& unit_pair,
+                                         const std::function<void(const Vec3&)>& visit) {
+  PenetrationSearch search(unit_pair, &visit);
+  const Vec3 n2 = unit_pair.R.col(0).cross(unit_pair.R.col(1)).normalized();
+  for (const Vec3& kink : {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), n2, Vec3(-n2)}) {
+    search.consider(kink);
+  }
+  considerRimCandidates(unit_pair, search);
+}
+
+}  // namespace internal
+
+namespace {
 
 template <typename S>
 DiskSignedDistanceResult<S> nanSignedDistance() {

@@ -15,6 +15,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <limits>
 #include <memory>
 #include <string>
 #include <utility>
@@ -131,22 +133,13 @@ constexpr int kSphereSamples = 6000;
 constexpr int kSphereStarts = 12;
 constexpr Real kSearchFinalStep = 1e-13L;
 
-template <typename S>
-Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Capsule<S>& capsule,
-                    const fcl::Transform3<S>& X_WS) {
-  const Pose disk = diskOf(r, X_WD);
-  const Eigen::Matrix<Real, 3, 3> R_WS = X_WS.linear().template cast<Real>();
-  const VR axis = R_WS.col(2), centre = X_WS.translation().template cast<Real>();
-  const Real h = Real(capsule.lz) / 2;
-  const VR end_a = centre + h * axis, end_b = centre - h * axis;
-  const auto F = [&](const VR& w_raw) {
-    const VR w = w_raw / std::sqrt(w_raw.squaredNorm());
-    const VR in_plane = w - w.dot(disk.n) * disk.n;
-    const Real disk_support = disk.c.dot(w) + disk.r * std::sqrt(in_plane.squaredNorm());
-    return disk_support - std::min(end_a.dot(w), end_b.dot(w));
-  };
-  Real best = std::min(F(disk.n), F(VR(-disk.n)));
-  // The tie circle, in an orthonormal basis (e1, e2) of the plane normal to the axis.
+/// min over unit w of F, searched: the given directions, the circle normal to
+/// `axis` (sampled, each local minimum refined by golden sections), and a
+/// Fibonacci sphere whose best samples a shrinking compass search refines.
+template <typename Function>
+Real searchMinimum(const Function& F, std::initializer_list<VR> directions, const VR& axis) {
+  Real best = std::numeric_limits<Real>::infinity();
+  for (const VR& w : directions) best = std::min(best, F(w));
   VR e1 = axis.cross(VR::UnitX());
   if (e1.squaredNorm() < 0.25L) e1 = axis.cross(VR::UnitY());
   e1 /= std::sqrt(e1.squaredNorm());
@@ -165,7 +158,6 @@ Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Capsule<S>& 
     }
     best = std::min(best, on_circle((lo + hi) / 2));
   }
-  // The sphere: Fibonacci samples, the best refined by a compass search.
   std::vector<std::pair<Real, VR>> samples;
   for (int k = 0; k < kSphereSamples; ++k) {
     const Real z = 1 - (2 * k + 1) / Real(kSphereSamples), ring = std::sqrt(1 - z * z);
@@ -197,7 +189,48 @@ Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Capsule<S>& 
     }
     best = std::min(best, value);
   }
-  return Real(capsule.radius) + best;
+  return best;
+}
+
+/// The disk's support h_disk(w) = c.w + r |P w|.
+Real diskSupport(const Pose& disk, const VR& w) {
+  const VR in_plane = w - w.dot(disk.n) * disk.n;
+  return disk.c.dot(w) + disk.r * std::sqrt(in_plane.squaredNorm());
+}
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Capsule<S>& capsule,
+                    const fcl::Transform3<S>& X_WS) {
+  const Pose disk = diskOf(r, X_WD);
+  const Eigen::Matrix<Real, 3, 3> R_WS = X_WS.linear().template cast<Real>();
+  const VR axis = R_WS.col(2), centre = X_WS.translation().template cast<Real>();
+  const Real h = Real(capsule.lz) / 2;
+  const VR end_a = centre + h * axis, end_b = centre - h * axis;
+  const auto F = [&](const VR& w_raw) {
+    const VR w = w_raw / std::sqrt(w_raw.squaredNorm());
+    return diskSupport(disk, w) - std::min(end_a.dot(w), end_b.dot(w));
+  };
+  return Real(capsule.radius) + searchMinimum(F, {disk.n, VR(-disk.n)}, axis);
+}
+
+/// Cylinder (axis z of its frame, half length h, radius rho): its support at
+/// -w is -centre.w + rho |P_axis w| + h |axis.w|, kinked at +-axis and on the
+/// circle normal to it.
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Cylinder<S>& cylinder,
+                    const fcl::Transform3<S>& X_WS) {
+  const Pose disk = diskOf(r, X_WD);
+  const Eigen::Matrix<Real, 3, 3> R_WS = X_WS.linear().template cast<Real>();
+  const VR axis = R_WS.col(2), centre = X_WS.translation().template cast<Real>();
+  const Real h = Real(cylinder.lz) / 2, rho = Real(cylinder.radius);
+  const auto F = [&](const VR& w_raw) {
+    const VR w = w_raw / std::sqrt(w_raw.squaredNorm());
+    const Real along = w.dot(axis);
+    const VR across = w - along * axis;
+    return diskSupport(disk, w) - centre.dot(w) + rho * std::sqrt(across.squaredNorm()) +
+           h * std::abs(along);
+  };
+  return searchMinimum(F, {disk.n, VR(-disk.n), axis, VR(-axis)}, axis);
 }
 
 /// Random shapes of size ~0.5 at centres in the unit ball, a disk of radius
@@ -213,6 +246,10 @@ fcl::Halfspace<S> randomShape(Random& rng, fcl::Halfspace<S>*) {
 template <typename S>
 fcl::Capsule<S> randomShape(Random& rng, fcl::Capsule<S>*) {
   return fcl::Capsule<S>(S(rng.uniform(0.0, 0.5)), S(rng.uniform(0.0, 2.0)));
+}
+template <typename S>
+fcl::Cylinder<S> randomShape(Random& rng, fcl::Cylinder<S>*) {
+  return fcl::Cylinder<S>(S(rng.uniform(0.05, 1.0)), S(rng.uniform(0.0, 2.0)));
 }
 template <typename S>
 fcl::Plane<S> randomShape(Random& rng, fcl::Plane<S>*) {
@@ -320,6 +357,9 @@ TYPED_TEST(DiskShapePenetration, PlaneMatchesReference) {
 }
 TYPED_TEST(DiskShapePenetration, CapsuleMatchesReference) {
   checkShape<TypeParam, fcl::Capsule<TypeParam>>("capsule", 14, kCapsulePoses);
+}
+TYPED_TEST(DiskShapePenetration, CylinderMatchesReference) {
+  checkShape<TypeParam, fcl::Cylinder<TypeParam>>("cylinder", 15, kCapsulePoses);
 }
 
 TEST(DiskShapePenetration, HandMadeCases) {

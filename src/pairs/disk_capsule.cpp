@@ -4,18 +4,13 @@
 // contact's directions make its depth the exact penetration depth
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
-#include "../trig_roots.h"
+#include "axis_candidates.h"
 
 #include <vector>
 
 namespace fcl_disk {
 namespace internal {
 namespace {
-
-/// A rim point closer than this (relative to r + |c|) to the capsule's axis has
-/// no horizontal direction of its own: the candidate is normal to the axis and
-/// the rim tangent instead (what the horizontal part tends to as it vanishes).
-constexpr double kOnAxis = 1e-9;
 
 /// The segment {(0, 0, z) : |z| <= half_length} of the capsule frame.
 struct SegmentTarget {
@@ -69,28 +64,7 @@ struct CapsuleTraits {
       directions.push_back(disk.c + rim_offset - s);  // nearest rim point minus s
       directions.push_back(disk.c - rim_offset - s);  // farthest
     }
-    // K's roots along the disk's rim b(theta) = c + r (cos u + sin v).
-    using namespace trig_roots;
-    static const AngleTable<kSamples> angles;
-    std::array<double, kSamples> samples;
-    double terms = 0.0;
-    for (int j = 0; j < kSamples; ++j) {
-      const Vec3 b = disk.c + disk.r * (angles.cos[j] * disk.u + angles.sin[j] * disk.v);
-      const Vec3 db = disk.r * (angles.cos[j] * disk.v - angles.sin[j] * disk.u);
-      samples[j] = b.x() * db.x() + b.y() * db.y();
-      terms = std::max(terms, std::hypot(b.x(), b.y()) * std::hypot(db.x(), db.y()));
-    }
-    forEachRootAngle(TrigPolynomial::fromSamples(samples), kBernsteinNoise * terms,
-                     [&](double cos_theta, double sin_theta) {
-                       const Vec3 b = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
-                       const double rho = std::hypot(b.x(), b.y());
-                       if (rho > kOnAxis * (disk.r + disk.c.norm())) {
-                         directions.emplace_back(b.x(), b.y(), 0.0);
-                       } else {  // b on the axis: horizontal and normal to the rim there
-                         const Vec3 tangent = cos_theta * disk.v - sin_theta * disk.u;
-                         directions.push_back(Vec3::UnitZ().cross(tangent));
-                       }
-                     });
+    addRimPointsNormalToTheAxis(disk, &directions);
     return directions;
   }
 };

@@ -1,7 +1,13 @@
 // Disk - fcl::Cylinder (a real, solid one): the generic solver with the
 // cylinder's projection (clamp the height, clamp the radial distance) and
-// support. docs/disk_shape_distance.md, section 4.
+// support (docs/disk_shape_distance.md, section 4); the contact's directions
+// make its depth the exact penetration depth (docs/penetration_depth.md,
+// section 7).
+#include "../disk_penetration_candidates.h"
 #include "../disk_shape_pair.h"
+#include "axis_candidates.h"
+
+#include <vector>
 
 namespace fcl_disk {
 namespace internal {
@@ -55,9 +61,38 @@ struct CylinderTraits {
   static CylinderTarget target(const fcl::Cylinder<S>& cylinder) {
     return CylinderTarget{double(cylinder.radius), 0.5 * double(cylinder.lz)};
   }
-  /// The axis and the frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const CylinderTarget&, const DiskInShape&) {
-    return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
+  /// The directions among which the shortest separating translation lies
+  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// depth is the exact penetration depth. The cylinder's support, h(-w) =
+  /// radius |P_z w| + half_length |w_z| - ..., is kinked at w = +-z (its caps'
+  /// normals) and on the circle w . z = 0 (its two caps tie). Away from both, one
+  /// cap is the support and F is the disk-disk F of the disk against that cap:
+  /// its candidates (docs/penetration_depth.md, section 2). On the circle F =
+  /// h_disk(w) + radius, stationary where the disk's support is normal to the
+  /// axis (section 7).
+  static std::vector<Vec3> contactDirections(const CylinderTarget& target,
+                                             const DiskInShape& disk) {
+    std::vector<Vec3> directions = {Vec3::UnitZ()};
+    directions.reserve(64);
+    addRimPointsNormalToTheAxis(disk, &directions);
+    const Mat3 R_disk = (Mat3() << disk.u, disk.v, disk.n).finished();
+    for (const double end : {-target.half_length, target.half_length}) {
+      const Vec3 cap_centre(0.0, 0.0, end);
+      // The smaller of the two disks is the one whose rim Q follows (section 2).
+      const bool disk_is_smaller = disk.r <= target.radius;
+      const PairInFrame1 pair =
+          disk_is_smaller
+              ? PairInFrame1::make(disk.c - cap_centre, R_disk, target.radius, disk.r)
+              : PairInFrame1::make(R_disk.transpose() * (cap_centre - disk.c),
+                                   R_disk.transpose(), disk.r, target.radius);
+      const double scale = pair.scale();
+      const PairInFrame1 unit_pair =
+          PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
+      forEachDiskPairPenetrationCandidate(unit_pair, [&](const Vec3& w) {
+        directions.push_back(disk_is_smaller ? w : Vec3(R_disk * w));
+      });
+    }
+    return directions;
   }
 };
 
