@@ -6,8 +6,9 @@
 //              and clamping to the rim;
 //   halfspace: PD = r |P m| - h0 (the disk's lowest height below the boundary);
 //   plane:     PD = min(h0 + r |P m|, r |P m| - h0);
-//   capsule:   PD = rho + min over directions of the segment's separating
-//              length, by a search over the sphere (below).
+//   capsule, cylinder, box, triangle, convex: PD = min over unit w of
+//              h_disk(w) + h_shape(-w), by a search over the sphere (below),
+//              with the shape's support from its vertices or axis.
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <fcl_disk/fcl_disk.h>
@@ -41,8 +42,8 @@ constexpr double kSeparationStepRelative = 1e-6;
 /// The path of the continuity check moves the shape by this much per step (scale units).
 constexpr double kPathStepRelative = 1e-3;
 constexpr int kPosesPerShape = 30000;
-/// The capsule's reference is a search (~1 ms a pose): fewer poses.
-constexpr int kCapsulePoses = 1500;
+/// The searched references take ~1 ms a pose: fewer poses.
+constexpr int kSearchedPoses = 1500;
 
 template <typename S>
 fcl::Transform3<S> randomPose(Random& rng, double reach) {
@@ -121,11 +122,11 @@ Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Plane<S>& pl
   return std::min(span + h0, span - h0);
 }
 
-/// Capsule (axis z of its frame, half length h, radius rho): PD = rho + min over
-/// unit w of F(w) = h_disk(w) + h_segment(-w), the segment's depth (or minus
-/// its distance) inflated by rho. The minimum is found by a search of its own:
-/// the disk's normals; the circle w . z = 0 where the segment's ends tie (F is
-/// kinked across it), sampled at kCircleSamples angles, each local minimum
+/// The searched references: PD = min over unit w of F(w) = h_disk(w) +
+/// h_shape(-w), found by a search of its own: given directions (the disk's
+/// normals, the shape's face normals); the circles where F is kinked (normal
+/// to an axis or edge, where the shape's support jumps between two vertices
+/// or caps), each sampled at kCircleSamples angles and every local minimum
 /// refined by golden sections; and a Fibonacci sphere of kSphereSamples
 /// directions, the best kSphereStarts refined by a shrinking compass search.
 constexpr int kCircleSamples = 720;
@@ -133,30 +134,38 @@ constexpr int kSphereSamples = 6000;
 constexpr int kSphereStarts = 12;
 constexpr Real kSearchFinalStep = 1e-13L;
 
-/// min over unit w of F, searched: the given directions, the circle normal to
-/// `axis` (sampled, each local minimum refined by golden sections), and a
+/// min over unit w of F, searched: the given directions, the circles normal
+/// to `axes` (sampled, each local minimum refined by golden sections), and a
 /// Fibonacci sphere whose best samples a shrinking compass search refines.
 template <typename Function>
-Real searchMinimum(const Function& F, std::initializer_list<VR> directions, const VR& axis) {
+Real searchMinimum(const Function& F, const std::vector<VR>& directions,
+                   const std::vector<VR>& axes) {
   Real best = std::numeric_limits<Real>::infinity();
   for (const VR& w : directions) best = std::min(best, F(w));
-  VR e1 = axis.cross(VR::UnitX());
-  if (e1.squaredNorm() < 0.25L) e1 = axis.cross(VR::UnitY());
-  e1 /= std::sqrt(e1.squaredNorm());
-  const VR e2 = axis.cross(e1);
-  const auto on_circle = [&](Real angle) { return F(std::cos(angle) * e1 + std::sin(angle) * e2); };
-  const Real step = 2 * Real(M_PI) / kCircleSamples;
-  for (int k = 0; k < kCircleSamples; ++k) {
-    const Real angle = k * step;
-    if (!(on_circle(angle) <= on_circle(angle - step) && on_circle(angle) <= on_circle(angle + step))) {
-      continue;
+  for (const VR& axis : axes) {
+    VR e1 = axis.cross(VR::UnitX());
+    if (e1.squaredNorm() < 0.25L) e1 = axis.cross(VR::UnitY());
+    e1 /= std::sqrt(e1.squaredNorm());
+    const VR e2 = axis.cross(e1);
+    const auto on_circle = [&](Real angle) {
+      return F(std::cos(angle) * e1 + std::sin(angle) * e2);
+    };
+    const Real step = 2 * Real(M_PI) / kCircleSamples;
+    std::vector<Real> values(kCircleSamples);
+    for (int k = 0; k < kCircleSamples; ++k) values[k] = on_circle(k * step);
+    for (int k = 0; k < kCircleSamples; ++k) {
+      const Real value = values[k];
+      if (!(value <= values[(k + kCircleSamples - 1) % kCircleSamples] &&
+            value <= values[(k + 1) % kCircleSamples])) {
+        continue;
+      }
+      Real lo = (k - 1) * step, hi = (k + 1) * step;  // golden sections on a local minimum
+      for (int i = 0; i < 200 && hi - lo > 1e-18L; ++i) {
+        const Real m1 = lo + (hi - lo) * 0.381966L, m2 = lo + (hi - lo) * 0.618034L;
+        if (on_circle(m1) < on_circle(m2)) hi = m2; else lo = m1;
+      }
+      best = std::min(best, on_circle((lo + hi) / 2));
     }
-    Real lo = angle - step, hi = angle + step;  // golden sections on a local minimum
-    for (int i = 0; i < 200 && hi - lo > 1e-18L; ++i) {
-      const Real m1 = lo + (hi - lo) * 0.381966L, m2 = lo + (hi - lo) * 0.618034L;
-      if (on_circle(m1) < on_circle(m2)) hi = m2; else lo = m1;
-    }
-    best = std::min(best, on_circle((lo + hi) / 2));
   }
   std::vector<std::pair<Real, VR>> samples;
   for (int k = 0; k < kSphereSamples; ++k) {
@@ -210,7 +219,7 @@ Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Capsule<S>& 
     const VR w = w_raw / std::sqrt(w_raw.squaredNorm());
     return diskSupport(disk, w) - std::min(end_a.dot(w), end_b.dot(w));
   };
-  return Real(capsule.radius) + searchMinimum(F, {disk.n, VR(-disk.n)}, axis);
+  return Real(capsule.radius) + searchMinimum(F, {disk.n, VR(-disk.n)}, {axis});
 }
 
 /// Cylinder (axis z of its frame, half length h, radius rho): its support at
@@ -230,7 +239,88 @@ Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Cylinder<S>&
     return diskSupport(disk, w) - centre.dot(w) + rho * std::sqrt(across.squaredNorm()) +
            h * std::abs(along);
   };
-  return searchMinimum(F, {disk.n, VR(-disk.n), axis, VR(-axis)}, axis);
+  return searchMinimum(F, {disk.n, VR(-disk.n), axis, VR(-axis)}, {axis});
+}
+
+/// A polytope in the world: vertices (its support is the largest vertex),
+/// edge directions (F is kinked on the circles normal to them) and face
+/// normals (where those circles cross).
+struct PolytopeInWorld {
+  std::vector<VR> vertices, edges, normals;
+};
+
+template <typename S>
+VR toWorld(const fcl::Transform3<S>& X_WS, const fcl::Vector3<S>& x_S) {
+  return X_WS.translation().template cast<Real>() + X_WS.linear().template cast<Real>() * x_S.template cast<Real>();
+}
+
+template <typename S>
+Real polytopeDepth(S r, const fcl::Transform3<S>& X_WD, const PolytopeInWorld& polytope) {
+  const Pose disk = diskOf(r, X_WD);
+  const auto F = [&](const VR& w_raw) {
+    const VR w = w_raw / std::sqrt(w_raw.squaredNorm());
+    Real lowest = std::numeric_limits<Real>::infinity();
+    for (const VR& x : polytope.vertices) lowest = std::min(lowest, x.dot(w));
+    return diskSupport(disk, w) - lowest;
+  };
+  std::vector<VR> directions = {disk.n, VR(-disk.n)};
+  for (const VR& m : polytope.normals) directions.insert(directions.end(), {m, VR(-m)});
+  return searchMinimum(F, directions, polytope.edges);
+}
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Box<S>& box,
+                    const fcl::Transform3<S>& X_WS) {
+  PolytopeInWorld polytope;
+  const fcl::Vector3<S> half = box.side / S(2);
+  for (const int sx : {-1, 1}) {
+    for (const int sy : {-1, 1}) {
+      for (const int sz : {-1, 1}) {
+        polytope.vertices.push_back(
+            toWorld(X_WS, fcl::Vector3<S>(S(sx) * half.x(), S(sy) * half.y(), S(sz) * half.z())));
+      }
+    }
+  }
+  for (int i = 0; i < 3; ++i) polytope.edges.push_back(X_WS.linear().col(i).template cast<Real>());
+  polytope.normals = polytope.edges;
+  return polytopeDepth(r, X_WD, polytope);
+}
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::TriangleP<S>& triangle,
+                    const fcl::Transform3<S>& X_WS) {
+  PolytopeInWorld polytope;
+  for (const auto* x : {&triangle.a, &triangle.b, &triangle.c}) {
+    polytope.vertices.push_back(toWorld(X_WS, *x));
+  }
+  for (int i = 0; i < 3; ++i) {
+    const VR edge = polytope.vertices[(i + 1) % 3] - polytope.vertices[i];
+    if (edge.squaredNorm() > 0) polytope.edges.push_back(edge / std::sqrt(edge.squaredNorm()));
+  }
+  const VR normal = polytope.edges.size() == 3 ? VR(polytope.edges[0].cross(polytope.edges[1])) : VR::Zero();
+  if (normal.squaredNorm() > 0) polytope.normals.push_back(normal / std::sqrt(normal.squaredNorm()));
+  return polytopeDepth(r, X_WD, polytope);
+}
+
+template <typename S>
+Real referenceDepth(S r, const fcl::Transform3<S>& X_WD, const fcl::Convex<S>& convex,
+                    const fcl::Transform3<S>& X_WS) {
+  PolytopeInWorld polytope;
+  const auto& vertices = convex.getVertices();
+  for (const auto& x : vertices) polytope.vertices.push_back(toWorld(X_WS, x));
+  const std::vector<int>& list = convex.getFaces();
+  for (std::size_t at = 0; at < list.size(); at += list[at] + 1) {
+    const int count = list[at];
+    for (int i = 0; i < count; ++i) {
+      const VR edge = polytope.vertices[list[at + 1 + (i + 1) % count]] - polytope.vertices[list[at + 1 + i]];
+      polytope.edges.push_back(edge / std::sqrt(edge.squaredNorm()));
+    }
+    const VR a = polytope.vertices[list[at + 1]], b = polytope.vertices[list[at + 2]],
+             c = polytope.vertices[list[at + 3]];
+    const VR normal = (b - a).cross(c - a);
+    polytope.normals.push_back(normal / std::sqrt(normal.squaredNorm()));
+  }
+  return polytopeDepth(r, X_WD, polytope);
 }
 
 /// Random shapes of size ~0.5 at centres in the unit ball, a disk of radius
@@ -254,6 +344,62 @@ fcl::Cylinder<S> randomShape(Random& rng, fcl::Cylinder<S>*) {
 template <typename S>
 fcl::Plane<S> randomShape(Random& rng, fcl::Plane<S>*) {
   return fcl::Plane<S>(rng.unitVector().cast<S>(), S(rng.uniform(-0.5, 0.5)));
+}
+template <typename S>
+fcl::Box<S> randomShape(Random& rng, fcl::Box<S>*) {
+  return fcl::Box<S>(S(rng.uniform(0.0, 1.2)), S(rng.uniform(0.0, 1.2)), S(rng.uniform(0.0, 1.2)));
+}
+template <typename S>
+fcl::TriangleP<S> randomShape(Random& rng, fcl::TriangleP<S>*) {
+  return fcl::TriangleP<S>(rng.inBall(0.8).cast<S>(), rng.inBall(0.8).cast<S>(),
+                           rng.inBall(0.8).cast<S>());
+}
+/// A tetrahedron, or a prism over a triangle with its top shifted (planar
+/// parallelogram sides), in the ball of radius 1; faces counter-clockwise seen
+/// from outside. Coordinates are multiples of kConvexGrid, so that every vertex,
+/// and so every side's planarity, is exact in float too (the solvers take a
+/// face to be the plane of its Newell normal).
+constexpr double kConvexGrid = 1.0 / 1024;
+template <typename S>
+fcl::Convex<S> randomShape(Random& rng, fcl::Convex<S>*) {
+  const auto on_grid = [&](double reach) {
+    Vd x = rng.inBall(reach);
+    for (int i = 0; i < 3; ++i) x[i] = std::round(x[i] / kConvexGrid) * kConvexGrid;
+    return x;
+  };
+  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+  std::vector<std::vector<int>> faces;
+  Vd base[3];
+  for (;;) {
+    for (Vd& x : base) x = on_grid(0.5);
+    if ((base[1] - base[0]).cross(base[2] - base[0]).norm() > 0.05) break;
+  }
+  const Vd base_normal = (base[1] - base[0]).cross(base[2] - base[0]).normalized();
+  Vd lift;
+  do lift = on_grid(0.5);
+  while (std::abs(lift.dot(base_normal)) < 0.1);
+  if (rng.uniform(0.0, 1.0) < 0.5) {
+    for (const Vd& x : base) vertices->push_back(x.cast<S>());
+    vertices->push_back((base[0] + lift).cast<S>());
+    faces = {{0, 1, 2}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+  } else {
+    for (const Vd& x : base) vertices->push_back(x.cast<S>());
+    for (const Vd& x : base) vertices->push_back((x + lift).cast<S>());
+    faces = {{0, 1, 2}, {3, 4, 5}, {0, 1, 4, 3}, {1, 2, 5, 4}, {2, 0, 3, 5}};
+  }
+  Vd centroid = Vd::Zero();
+  for (const auto& x : *vertices) centroid += x.template cast<double>();
+  centroid /= double(vertices->size());
+  auto list = std::make_shared<std::vector<int>>();
+  for (auto& face : faces) {
+    const Vd a = (*vertices)[face[0]].template cast<double>();
+    const Vd normal = ((*vertices)[face[1]].template cast<double>() - a)
+                          .cross((*vertices)[face[2]].template cast<double>() - a);
+    if (normal.dot(a - centroid) < 0) std::reverse(face.begin(), face.end());
+    list->push_back(int(face.size()));
+    list->insert(list->end(), face.begin(), face.end());
+  }
+  return fcl::Convex<S>(vertices, int(faces.size()), list);
 }
 
 template <typename S, typename Shape>
@@ -356,10 +502,19 @@ TYPED_TEST(DiskShapePenetration, PlaneMatchesReference) {
   checkShape<TypeParam, fcl::Plane<TypeParam>>("plane", 13);
 }
 TYPED_TEST(DiskShapePenetration, CapsuleMatchesReference) {
-  checkShape<TypeParam, fcl::Capsule<TypeParam>>("capsule", 14, kCapsulePoses);
+  checkShape<TypeParam, fcl::Capsule<TypeParam>>("capsule", 14, kSearchedPoses);
 }
 TYPED_TEST(DiskShapePenetration, CylinderMatchesReference) {
-  checkShape<TypeParam, fcl::Cylinder<TypeParam>>("cylinder", 15, kCapsulePoses);
+  checkShape<TypeParam, fcl::Cylinder<TypeParam>>("cylinder", 15, kSearchedPoses);
+}
+TYPED_TEST(DiskShapePenetration, BoxMatchesReference) {
+  checkShape<TypeParam, fcl::Box<TypeParam>>("box", 16, kSearchedPoses);
+}
+TYPED_TEST(DiskShapePenetration, TriangleMatchesReference) {
+  checkShape<TypeParam, fcl::TriangleP<TypeParam>>("triangle", 17, kSearchedPoses);
+}
+TYPED_TEST(DiskShapePenetration, ConvexMatchesReference) {
+  checkShape<TypeParam, fcl::Convex<TypeParam>>("convex", 18, kSearchedPoses);
 }
 
 TEST(DiskShapePenetration, HandMadeCases) {

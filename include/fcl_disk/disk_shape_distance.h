@@ -92,8 +92,8 @@ DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>&
 /// shape, and translating the shape by penetration_depth * normal separates them:
 /// the smallest such translation among the disk's normal and the shape's own
 /// candidate directions (docs/disk_shape_distance.md section 5). It is an upper
-/// bound on the penetration depth, exact for Sphere, Capsule, Cylinder,
-/// Halfspace and Plane (kExactDiskShapePenetration).
+/// bound on the penetration depth, exact for Sphere, Box, Capsule, Cylinder,
+/// Convex, Halfspace, Plane and TriangleP (kExactDiskShapePenetration).
 template <typename S, typename Shape>
 bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact = nullptr);
@@ -106,8 +106,11 @@ bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& s
 /// +-its normal (docs/disk_shape_distance.md, section 5); Capsule: among the
 /// disk's normals, its ends' nearest and farthest rim points, and the rim
 /// points where the disk's support is normal to the axis; Cylinder: among the
-/// disk-disk candidates against each cap, the axis and those rim points
-/// (docs/penetration_depth.md, section 7).
+/// disk-disk candidates against each cap, the axis and those rim points; Box,
+/// TriangleP and Convex (a polytope whose faces bound the hull of its
+/// vertices): among the face normals, the vertices' nearest and farthest rim
+/// points, and the rim points where the disk's support is normal to an edge
+/// line (docs/penetration_depth.md, section 7).
 template <typename Shape>
 constexpr bool kExactDiskShapePenetration = false;
 /// @cond
@@ -121,6 +124,12 @@ template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Capsule<S>> = true;
 template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Cylinder<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Box<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::TriangleP<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Convex<S>> = true;
 /// @endcond
 
 /// @cond
@@ -167,7 +176,7 @@ DiskSignedDistanceResult<S> signedDiskShapeDistance(S radius, const fcl::Transfo
                                                     const fcl::Transform3<S>& X_WS) {
   static_assert(kExactDiskShapePenetration<Shape>,
                 "signedDiskShapeDistance: the penetration depth is exact for Sphere, "
-                "Capsule, Cylinder, Halfspace and Plane only");
+                "Box, Capsule, Cylinder, Convex, Halfspace, Plane and TriangleP only");
   const S nan = std::numeric_limits<S>::quiet_NaN();
   DiskSignedDistanceResult<S> result;
   const DiskShapeDistanceResult<S> apart = diskShapeDistance(radius, X_WD, shape, X_WS);

@@ -1,6 +1,9 @@
 // Disk - fcl::Box: the generic solver with the box's projection (clamping in the
 // box frame) and support (a vertex). docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
+#include "feature_candidates.h"
+
+#include <vector>
 
 namespace fcl_disk {
 namespace internal {
@@ -60,9 +63,34 @@ struct BoxTraits {
   static BoxTarget target(const fcl::Box<S>& box) {
     return BoxTarget{0.5 * box.side.template cast<double>()};
   }
-  /// The face normals.
-  static std::array<Vec3, 3> contactDirections(const BoxTarget&, const DiskInShape&) {
-    return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  /// The directions among which the shortest separating translation lies
+  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// depth is the exact penetration depth. The box's support h(-w) = -sum
+  /// half_i |w_i| is kinked on the circles w_i = 0: a corner is the support
+  /// inside each octant, an edge on an arc, a face at +-e_i. The face normals,
+  /// and the candidates of the 8 corners and the 12 edge lines
+  /// (feature_candidates.h; docs/penetration_depth.md, section 7).
+  static std::vector<Vec3> contactDirections(const BoxTarget& target, const DiskInShape& disk) {
+    std::vector<Vec3> directions = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+    directions.reserve(80);
+    const Vec3& half = target.half;
+    for (const double x : {-half.x(), half.x()}) {
+      for (const double y : {-half.y(), half.y()}) {
+        for (const double z : {-half.z(), half.z()}) addVertexCandidates(disk, Vec3(x, y, z), &directions);
+      }
+    }
+    for (int i = 0; i < 3; ++i) {  // the 4 edges along e_i, through (0, +-half_j, +-half_k)
+      const int j = (i + 1) % 3, k = (i + 2) % 3;
+      for (const double side_j : {-1.0, 1.0}) {
+        for (const double side_k : {-1.0, 1.0}) {
+          Vec3 point = Vec3::Zero();
+          point[j] = side_j * half[j];
+          point[k] = side_k * half[k];
+          addEdgeLineCandidates(disk, point, Vec3::Unit(i), &directions);
+        }
+      }
+    }
+    return directions;
   }
 };
 

@@ -4,7 +4,7 @@
 // contact's directions make its depth the exact penetration depth
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
-#include "axis_candidates.h"
+#include "feature_candidates.h"
 
 #include <vector>
 
@@ -46,25 +46,18 @@ struct CapsuleTraits {
   /// rho is smooth but at the disk's normals and on the circle w . z = 0 where
   /// the segment's two ends tie. Away from both, a minimiser has the segment's
   /// end s as support point and the disk's rim point b along b - s, so b is
-  /// the rim point nearest or farthest s (a critical point of |b - s|). On the
-  /// circle, F = h_disk(w) + rho with w horizontal, stationary where the
-  /// disk's support point b has its horizontal part along w and normal to the
-  /// rim tangent: where K(theta) = b_xy . b'_xy = 0 (docs/penetration_depth.md,
-  /// section 7).
+  /// the rim point nearest or farthest s (addVertexCandidates). On the circle,
+  /// F = h_disk(w) + rho with w horizontal, stationary where the disk's support
+  /// point b has its horizontal part along w and normal to the rim tangent
+  /// (addEdgeLineCandidates on the axis; docs/penetration_depth.md, section 7).
   static std::vector<Vec3> contactDirections(const SegmentTarget& target,
                                              const DiskInShape& disk) {
     std::vector<Vec3> directions;
     directions.reserve(16);
     for (const double end : {-target.half_length, target.half_length}) {
-      const Vec3 s(0.0, 0.0, end);
-      const Vec2 radial = disk.inPlane(s - disk.c);
-      const double length = radial.norm();
-      if (!(length > 0.0)) continue;  // s on the disk's axis: the normals decide
-      const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
-      directions.push_back(disk.c + rim_offset - s);  // nearest rim point minus s
-      directions.push_back(disk.c - rim_offset - s);  // farthest
+      addVertexCandidates(disk, Vec3(0.0, 0.0, end), &directions);
     }
-    addRimPointsNormalToTheAxis(disk, &directions);
+    addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), &directions);
     return directions;
   }
 };

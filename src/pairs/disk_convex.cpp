@@ -2,8 +2,10 @@
 // nearest of the faces whose planes see the point) and support (a vertex).
 // docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
+#include "feature_candidates.h"
 #include "polygon_projection.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -43,6 +45,8 @@ struct ConvexGeometry {
   /// The face planes again, one array per coordinate, so that the height scan
   /// of every projection runs vectorised: n_x, n_y, n_z, offset.
   std::array<std::vector<double>, 4> planes;
+  /// The edges of the faces, each once (vertex indices, the smaller first).
+  std::vector<std::array<int, 2>> edges;
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
@@ -73,6 +77,7 @@ struct ConvexTarget {
   const std::vector<ConvexFace>& faces;
   const std::vector<TriangleProjection>& triangles;
   const std::array<std::vector<double>, 4>& planes;
+  const std::vector<std::array<int, 2>>& edges;
   int largest_face;
   bool flat;
 
@@ -82,6 +87,7 @@ struct ConvexTarget {
         faces(geometry.faces),
         triangles(geometry.triangles),
         planes(geometry.planes),
+        edges(geometry.edges),
         largest_face(geometry.largest_face),
         flat(geometry.flat) {}
 
@@ -176,8 +182,15 @@ struct ConvexTarget {
       faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre, radius});
       for (int k = 0; k < 3; ++k) geometry.planes[k].push_back(unit[k]);
       geometry.planes[3].push_back(faces.back().offset);
+      for (int i = 0; i < count; ++i) {
+        const int from = index[i], to = index[(i + 1) % count];
+        geometry.edges.push_back({std::min(from, to), std::max(from, to)});
+      }
       at += count + 1;
     }
+    std::sort(geometry.edges.begin(), geometry.edges.end());
+    geometry.edges.erase(std::unique(geometry.edges.begin(), geometry.edges.end()),
+                         geometry.edges.end());
     return geometry;
   }
 
@@ -302,11 +315,27 @@ struct ConvexTraits {
   static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
     return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
   }
-  /// The face normals.
-  static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target, const DiskInShape&) {
-    std::vector<Vec3> normals;
-    for (const ConvexFace& face : target.faces) normals.push_back(face.unit_normal);
-    return normals;
+  /// The directions among which the shortest separating translation lies
+  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// depth is the exact penetration depth of a Convex whose faces bound the
+  /// hull of its vertices: the face normals, and the vertices' and edge lines'
+  /// candidates (feature_candidates.h; docs/penetration_depth.md, section 7).
+  static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target,
+                                             const DiskInShape& disk) {
+    const auto& vertices = target.convex->getVertices();
+    std::vector<Vec3> directions;
+    directions.reserve(target.faces.size() + 2 * vertices.size() + 4 * target.edges.size());
+    for (const ConvexFace& face : target.faces) directions.push_back(face.unit_normal);
+    for (const auto& vertex : vertices) {
+      addVertexCandidates(disk, vertex.template cast<double>(), &directions);
+    }
+    for (const auto& edge : target.edges) {
+      const Vec3 from = vertices[edge[0]].template cast<double>();
+      const Vec3 along = vertices[edge[1]].template cast<double>() - from;
+      const double length = ConvexTarget<S>::safeNorm(along);
+      if (length > 0.0) addEdgeLineCandidates(disk, from, along / length, &directions);
+    }
+    return directions;
   }
 };
 

@@ -5,7 +5,7 @@
 // section 7).
 #include "../disk_penetration_candidates.h"
 #include "../disk_shape_pair.h"
-#include "axis_candidates.h"
+#include "feature_candidates.h"
 
 #include <vector>
 
@@ -74,7 +74,7 @@ struct CylinderTraits {
                                              const DiskInShape& disk) {
     std::vector<Vec3> directions = {Vec3::UnitZ()};
     directions.reserve(64);
-    addRimPointsNormalToTheAxis(disk, &directions);
+    addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), &directions);
     const Mat3 R_disk = (Mat3() << disk.u, disk.v, disk.n).finished();
     for (const double end : {-target.half_length, target.half_length}) {
       const Vec3 cap_centre(0.0, 0.0, end);

@@ -2,7 +2,10 @@
 // triangle's projection (its face, else its nearest edge) and support (a vertex).
 // docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
+#include "feature_candidates.h"
 #include "polygon_projection.h"
+
+#include <vector>
 
 namespace fcl_disk {
 namespace internal {
@@ -53,9 +56,23 @@ struct TriangleTraits {
                                              triangle.b.template cast<double>(),
                                              triangle.c.template cast<double>())};
   }
-  /// The triangle's normal.
-  static std::array<Vec3, 1> contactDirections(const TriangleTarget& target, const DiskInShape&) {
-    return {target.triangle.unit_normal};
+  /// The directions among which the shortest separating translation lies
+  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// depth is the exact penetration depth: the triangle's normal (zero when
+  /// degenerate, then skipped), and the candidates of its vertices and edge
+  /// lines (feature_candidates.h; docs/penetration_depth.md, section 7).
+  static std::vector<Vec3> contactDirections(const TriangleTarget& target,
+                                             const DiskInShape& disk) {
+    const auto& vertices = target.triangle.vertices;
+    std::vector<Vec3> directions = {target.triangle.unit_normal};
+    directions.reserve(32);
+    for (int i = 0; i < 3; ++i) {
+      addVertexCandidates(disk, vertices[i], &directions);
+      const Vec3 along = vertices[(i + 1) % 3] - vertices[i];
+      const double length = along.norm();
+      if (length > 0.0) addEdgeLineCandidates(disk, vertices[i], along / length, &directions);
+    }
+    return directions;
   }
 };
 

@@ -1,0 +1,74 @@
+// Internal: candidate directions of the penetration depth of a disk against a
+// shape's vertices and edge lines (docs/penetration_depth.md, section 7). Where
+// a vertex or an edge is the shape's support, F(w) = h_disk(w) + h_shape(-w) is
+// the disk's support against that point or line, and these are the directions
+// at which it is stationary. Capsule and cylinder use them for their segment
+// ends and axis, the polytopes (box, triangle, convex) for all their features.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "../disk_shape_solver.h"
+#include "../trig_roots.h"
+
+namespace fcl_disk {
+namespace internal {
+
+/// A rim point closer than this (relative to r + its distance to the line) to
+/// an edge line has no direction away from it of its own: the candidate is
+/// normal to the line and the rim tangent instead (what the direction away
+/// tends to as it vanishes).
+constexpr double kRimPointOnLine = 1e-9;
+
+/// Appends the directions b - s from the rim points b nearest and farthest a
+/// vertex s: where the vertex is the shape's support, F(w) = h_disk(w) - s.w,
+/// stationary where the disk's support point b has b - s along w, i.e. b - s
+/// normal to the rim tangent. A vertex on the disk's axis has every rim point
+/// at one distance; there the disk's normals (always candidates) give the
+/// least F, as the foot of s on the disk's plane is its nearest disk point.
+inline void addVertexCandidates(const DiskInShape& disk, const Vec3& s,
+                                std::vector<Vec3>* directions) {
+  const Vec2 radial = disk.inPlane(s - disk.c);
+  const double length = radial.norm();
+  if (!(length > 0.0)) return;
+  const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
+  directions->push_back(disk.c + rim_offset - s);  // nearest rim point minus s
+  directions->push_back(disk.c - rim_offset - s);  // farthest
+}
+
+/// Appends the directions w normal to the line {s + t e} (e unit) at which the
+/// disk's support, restricted to such directions, is stationary: where an edge
+/// is the shape's support (w . e = 0), F(w) = h_disk(w) - s.w, and its
+/// critical points have the disk's support point b(theta) = c + r (cos u +
+/// sin v) with b - x along w, x the line's point nearest b. Both conditions
+/// (w normal to e and to the rim tangent b') give
+///   E(theta) = ((b - s).e)(e.b') - (b - s).b' = 0,
+/// a trigonometric polynomial of degree 2 (every root, trig_roots.h), and
+/// w = b - x. With d = c - s, a = d.e:
+///   E = (a e.v - d.v) cos + (d.u - a e.u) sin + r (e.u)(e.v) cos 2theta
+///       + r ((e.v)^2 - (e.u)^2)/2 sin 2theta   (b' taken for r = 1).
+inline void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e,
+                                  std::vector<Vec3>* directions) {
+  using namespace trig_roots;
+  const Vec3 d = disk.c - s;
+  const double a = d.dot(e), e_u = e.dot(disk.u), e_v = e.dot(disk.v);
+  TrigPolynomial E;
+  E.C[1] = a * e_v - d.dot(disk.v);
+  E.S[1] = d.dot(disk.u) - a * e_u;
+  E.C[2] = disk.r * e_u * e_v;
+  E.S[2] = 0.5 * disk.r * (e_v * e_v - e_u * e_u);
+  const double size = d.norm() + disk.r;  // bounds |E|'s terms
+  forEachRootAngle(E, kBernsteinNoise * size, [&](double cos_theta, double sin_theta) {
+    const Vec3 b = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
+    const Vec3 away = (b - s) - (b - s).dot(e) * e;  // b - x
+    if (away.norm() > kRimPointOnLine * size) {
+      directions->push_back(away);
+    } else {
+      directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
+    }
+  });
+}
+
+}  // namespace internal
+}  // namespace fcl_disk
