@@ -78,22 +78,28 @@ DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
   return result;
 }
 
-/// The contact of an intersecting pair (frame S in, world out): pos the common
-/// point; among the unit candidate directions w (the disk's normals and the
-/// shape's own, both signs), the one whose separating translation of the
-/// shape, depth(w) = max_disk w.k - min_shape w.y, is smallest (docs section 5).
-template <typename S, typename Directions, typename DepthAlong>
-DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WS, const DiskInShape& disk,
-                              const Vec3& common_point, const Directions& shape_directions,
+/// The shortest separating translation among candidate directions (frame S).
+struct Separation {
+  double depth = std::numeric_limits<double>::infinity();
+  Vec3 direction;
+};
+
+/// Among the unit candidate directions w (the disk's normals and the shape's
+/// own, both signs), the one whose separating translation of the shape,
+/// depth(w) = max_disk w.k - min_shape w.y, is smallest (docs section 5). When
+/// the candidates hold a minimiser of depth(w) over all w (the
+/// kExactDiskShapePenetration shapes), the depth is the penetration depth if
+/// the sets meet and minus their distance if not: its sign decides the overlap.
+template <typename Directions, typename DepthAlong>
+Separation shortestSeparation(const DiskInShape& disk, const Directions& shape_directions,
                               DepthAlong depth_along) {
-  Vec3 best_direction = disk.n;
-  double best_depth = std::numeric_limits<double>::infinity();
+  Separation best{std::numeric_limits<double>::infinity(), disk.n};
   auto consider = [&](const Vec3& w) {
     const double length = w.norm();
     if (!(length > 0.0)) return;
     const Vec3 unit = w / length;
     const double depth = depth_along(unit);
-    if (depth < best_depth) best_depth = depth, best_direction = unit;
+    if (depth < best.depth) best = Separation{depth, unit};
   };
   consider(disk.n);
   consider(-disk.n);
@@ -101,10 +107,18 @@ DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WS, const DiskInShape&
     consider(w);
     consider(-w);
   }
+  return best;
+}
+
+/// The contact of an intersecting pair (frame S in, world out): pos the common
+/// point, the shortest separation's depth and direction.
+template <typename S>
+DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WS, const Vec3& common_point,
+                              const Separation& separation) {
   DiskContact<S> contact;
   contact.pos = toWorldPoint(X_WS, common_point).template cast<S>();
-  contact.normal = (X_WS.linear().template cast<double>() * best_direction).template cast<S>();
-  contact.penetration_depth = S(std::max(best_depth, 0.0));
+  contact.normal = (X_WS.linear().template cast<double>() * separation.direction).template cast<S>();
+  contact.penetration_depth = S(std::max(separation.depth, 0.0));
   return contact;
 }
 
@@ -124,6 +138,27 @@ struct DiskShapePair;
 ///                                          // a range of Vec3, shape frame
 template <typename S, typename Shape, typename Traits>
 struct GenericDiskShapePair {
+  template <typename Target>
+  static Separation shortestSeparation(const Target& target, const DiskInShape& disk, double rho) {
+    const auto depth_along = [&](const Vec3& w) {
+      return disk.support(w) - (w.dot(target.support(-w)) - rho);
+    };
+    return internal::shortestSeparation(disk, Traits::contactDirections(target, disk), depth_along);
+  }
+
+  /// Whether the solver left the overlap open (not within touching, not proven
+  /// apart: a grazing overlap it stalled next to) and the shape's candidates,
+  /// which decide it exactly, say the sets meet (within `touching`).
+  template <typename Target>
+  static bool overlapLeftOpen(const Target& target, const DiskInShape& disk, double rho,
+                              const DiskShapeSolution& solution, double touching) {
+    if constexpr (kExactDiskShapePenetration<Shape>) {
+      return solution.distance > touching && !(solution.lower_bound > touching) &&
+             shortestSeparation(target, disk, rho).depth >= -touching;
+    }
+    return false;
+  }
+
   static DiskShapeDistanceResult<S> distance(S radius, const fcl::Transform3<S>& X_WD,
                                              const Shape& shape, const fcl::Transform3<S>& X_WS) {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) {
@@ -131,8 +166,16 @@ struct GenericDiskShapePair {
     }
     const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
-    return toWorld(X_WS, solveDiskShape(Traits::target(shape), disk, Traits::inflation(shape),
-                                        scale, SolverGoal::distance));
+    const auto target = Traits::target(shape);
+    const double rho = Traits::inflation(shape);
+    DiskShapeSolution solution = solveDiskShape(target, disk, rho, scale, SolverGoal::distance);
+    if (overlapLeftOpen(target, disk, rho, solution, kShapeTouchingTolerance * scale)) {
+      // Overlap: distance 0 at the solver's point, whose distance to the
+      // shape is the solver's residual.
+      solution.q = solution.p;
+      solution.distance = solution.lower_bound = 0.0;
+    }
+    return toWorld(X_WS, solution);
   }
 
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
@@ -144,13 +187,16 @@ struct GenericDiskShapePair {
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     const DiskShapeSolution solution =
         solveDiskShape(target, disk, rho, scale, SolverGoal::intersection);
-    if (!(solution.distance <= kShapeTouchingTolerance * scale)) return false;
+    const double touching = kShapeTouchingTolerance * scale;
+    if (!(solution.distance <= touching) &&
+        !overlapLeftOpen(target, disk, rho, solution, touching)) {
+      return false;
+    }
     if (contact) {
-      const auto depth_along = [&](const Vec3& w) {
-        return disk.support(w) - (w.dot(target.support(-w)) - rho);
-      };
-      *contact = contactInWorld<S>(X_WS, disk, solution.p, Traits::contactDirections(target, disk),
-                                   depth_along);
+      // pos: the common point, or midway between the solver's nearest points
+      // of an overlap it left open.
+      *contact = contactInWorld<S>(X_WS, 0.5 * (solution.p + solution.q),
+                                   shortestSeparation(target, disk, rho));
     }
     return true;
   }

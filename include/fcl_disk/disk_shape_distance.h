@@ -68,7 +68,11 @@ struct DiskShapeDistanceResult {
 /// (unsigned and signed alike; penetration depth is not computed here). Sets
 /// closer than 1e-13 * scale count as touching (a pair built touching in one
 /// frame touches only to rounding in another): distance 0, the disk's point as
-/// the common point, as diskShapeIntersect() decides.
+/// the common point, as diskShapeIntersect() decides. Where the iteration
+/// stops next to a grazing overlap without proving either answer, the shapes
+/// of kExactDiskShapePenetration decide it by the sign of the shortest
+/// separation over their penetration candidates (exact whatever the sign):
+/// overlap, distance 0 at the iteration's disk point.
 /// Ties (parallel faces, a segment parallel to the disk): the pair the
 /// iteration reaches, deterministic for a given input.
 ///
@@ -92,8 +96,8 @@ DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>&
 /// shape, and translating the shape by penetration_depth * normal separates them:
 /// the smallest such translation among the disk's normal and the shape's own
 /// candidate directions (docs/disk_shape_distance.md section 5). It is an upper
-/// bound on the penetration depth, exact for Sphere, Box, Capsule, Cylinder,
-/// Convex, Halfspace, Plane and TriangleP (kExactDiskShapePenetration).
+/// bound on the penetration depth, exact for every shape but the Ellipsoid
+/// (kExactDiskShapePenetration).
 template <typename S, typename Shape>
 bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact = nullptr);
@@ -106,7 +110,9 @@ bool diskShapeIntersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& s
 /// +-its normal (docs/disk_shape_distance.md, section 5); Capsule: among the
 /// disk's normals, its ends' nearest and farthest rim points, and the rim
 /// points where the disk's support is normal to the axis; Cylinder: among the
-/// disk-disk candidates against each cap, the axis and those rim points; Box,
+/// disk-disk candidates against each cap, the axis and those rim points; Cone:
+/// the apex's, the base's and the side's (where the disk's support is normal
+/// to a generator's plane) candidates; Box,
 /// TriangleP and Convex (a polytope whose faces bound the hull of its
 /// vertices): among the face normals, the vertices' nearest and farthest rim
 /// points, and the rim points where the disk's support is normal to an edge
@@ -124,6 +130,8 @@ template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Capsule<S>> = true;
 template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Cylinder<S>> = true;
+template <typename S>
+constexpr bool kExactDiskShapePenetration<fcl::Cone<S>> = true;
 template <typename S>
 constexpr bool kExactDiskShapePenetration<fcl::Box<S>> = true;
 template <typename S>
@@ -176,7 +184,7 @@ DiskSignedDistanceResult<S> signedDiskShapeDistance(S radius, const fcl::Transfo
                                                     const fcl::Transform3<S>& X_WS) {
   static_assert(kExactDiskShapePenetration<Shape>,
                 "signedDiskShapeDistance: the penetration depth is exact for Sphere, "
-                "Box, Capsule, Cylinder, Convex, Halfspace, Plane and TriangleP only");
+                "Box, Capsule, Cylinder, Cone, Convex, Halfspace, Plane and TriangleP only");
   const S nan = std::numeric_limits<S>::quiet_NaN();
   DiskSignedDistanceResult<S> result;
   const DiskShapeDistanceResult<S> apart = diskShapeDistance(radius, X_WD, shape, X_WS);

@@ -64,7 +64,7 @@ struct BoxTraits {
     return BoxTarget{0.5 * box.side.template cast<double>()};
   }
   /// The directions among which the shortest separating translation lies
-  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth. The box's support h(-w) = -sum
   /// half_i |w_i| is kinked on the circles w_i = 0: a corner is the support
   /// inside each octant, an edge on an arc, a face at +-e_i. The face normals,

@@ -41,7 +41,7 @@ struct CapsuleTraits {
     return SegmentTarget{0.5 * double(capsule.lz)};
   }
   /// The directions among which the shortest separating translation lies
-  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth: F(w) = h_disk(w) + h_segment(-w) +
   /// rho is smooth but at the disk's normals and on the circle w . z = 0 where
   /// the segment's two ends tie. Away from both, a minimiser has the segment's

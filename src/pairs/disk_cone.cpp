@@ -1,7 +1,12 @@
 // Disk - fcl::Cone: the generic solver with the cone's projection, computed in the
 // meridian half-plane (a right triangle) and turned about the axis, and its
-// support (apex or base rim). docs/disk_shape_distance.md, section 4.
+// support (apex or base rim). docs/disk_shape_distance.md, section 4. The
+// contact's directions make its depth the exact penetration depth
+// (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
+#include "feature_candidates.h"
+
+#include <vector>
 
 namespace fcl_disk {
 namespace internal {
@@ -76,6 +81,63 @@ struct ConeTarget {
   std::array<FlatEnd, 1> flatEnds() const { return {FlatEnd{-half_length, radius}}; }
 };
 
+/// Appends the directions w = -m on the circle of the cone's side normals m at
+/// which F is stationary along that circle. With the base radius rho, half
+/// length h and L = |(2h, rho)|, the outward side normal at azimuth phi is m(phi)
+/// = (2h cos phi, 2h sin phi, rho) / L, and there the cone's support at m is the
+/// whole generator from the apex a to the base rim; F(-m) = h_disk(-m) + m.a.
+/// dF/dphi = (a - b).m' with b the disk's support point at -m, so a critical
+/// phi has g = b - a normal to the base circle's tangent, (cos phi, sin phi) =
+/// +-g_xy / |g_xy|, while -m is in the disk's normal cone at b(theta): m normal
+/// to the rim tangent t(theta). Eliminating phi:
+///   G(theta) = (2h)^2 (g_xy . t_xy)^2 - rho^2 t_z^2 |g_xy|^2 = 0,
+/// a trigonometric polynomial of degree 4 (every root, trig_roots.h; squaring
+/// adds only candidates, each an upper bound). A rim point on the axis
+/// (g_xy = 0) leaves phi to the second condition alone.
+inline void addConeSideCandidates(const DiskInShape& disk, double radius, double half_length,
+                                  std::vector<Vec3>* directions) {
+  using namespace trig_roots;
+  const double height = 2.0 * half_length;  // the 2h of the side normal
+  const double slant = std::hypot(height, radius);
+  if (!(slant > 0.0)) return;  // a point: the apex's candidates
+  const Vec3 apex(0.0, 0.0, half_length);
+  const Vec3 d = disk.c - apex;
+  const auto normal_at = [&](double cos_phi, double sin_phi) {
+    return Vec3(height * cos_phi, height * sin_phi, radius);
+  };
+  static const AngleTable<kSamples> angles;
+  std::array<double, kSamples> samples;
+  for (int j = 0; j < kSamples; ++j) {
+    const Vec3 g = d + disk.r * (angles.cos[j] * disk.u + angles.sin[j] * disk.v);
+    const Vec3 t = angles.cos[j] * disk.v - angles.sin[j] * disk.u;
+    const double along = g.x() * t.x() + g.y() * t.y();
+    samples[j] = height * height * along * along -
+                 radius * radius * t.z() * t.z() * (g.x() * g.x() + g.y() * g.y());
+  }
+  const double size = d.norm() + disk.r;  // bounds |g|
+  const double noise = kBernsteinNoise * slant * slant * size * size;
+  forEachRootAngle(TrigPolynomial::fromSamples(samples), noise, [&](double cos_theta, double sin_theta) {
+    const Vec3 g = d + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
+    const double g_xy = std::hypot(g.x(), g.y());
+    if (g_xy > kRimPointOnLine * size) {
+      directions->push_back(normal_at(g.x() / g_xy, g.y() / g_xy));
+      directions->push_back(normal_at(-g.x() / g_xy, -g.y() / g_xy));
+      return;
+    }
+    // m . t = 0: 2h (t_x cos phi + t_y sin phi) = -rho t_z.
+    const Vec3 t = cos_theta * disk.v - sin_theta * disk.u;
+    const double amplitude = height * std::hypot(t.x(), t.y());
+    if (!(amplitude > 0.0)) return;
+    const double cosine = std::clamp(-radius * t.z() / amplitude, -1.0, 1.0);
+    const double sine = std::sqrt((1.0 - cosine) * (1.0 + cosine));
+    const double base_cos = height * t.x() / amplitude, base_sin = height * t.y() / amplitude;
+    for (const double side : {1.0, -1.0}) {
+      directions->push_back(normal_at(cosine * base_cos - side * sine * base_sin,
+                                      cosine * base_sin + side * sine * base_cos));
+    }
+  });
+}
+
 template <typename S>
 struct ConeTraits {
   static bool valid(const fcl::Cone<S>& cone) {
@@ -88,9 +150,20 @@ struct ConeTraits {
   static ConeTarget target(const fcl::Cone<S>& cone) {
     return ConeTarget{double(cone.radius), 0.5 * double(cone.lz)};
   }
-  /// The axis and the frame's two other axes.
-  static std::array<Vec3, 3> contactDirections(const ConeTarget&, const DiskInShape&) {
-    return {Vec3::UnitZ(), Vec3::UnitX(), Vec3::UnitY()};
+  /// The directions among which the shortest separating translation lies
+  /// (shortestSeparation adds the disk's normals and both signs), so the contact's
+  /// depth is the exact penetration depth. The cone's support at -w is the apex
+  /// on one region of directions, the base on the other (kinked at its normal
+  /// -z), and the side's generators on the circle between them: the apex's
+  /// vertex candidates, the base's disk-disk candidates and the side's
+  /// (addConeSideCandidates; docs/penetration_depth.md, section 7).
+  static std::vector<Vec3> contactDirections(const ConeTarget& target, const DiskInShape& disk) {
+    std::vector<Vec3> directions = {Vec3::UnitZ()};
+    directions.reserve(64);
+    addVertexCandidates(disk, Vec3(0.0, 0.0, target.half_length), &directions);
+    addFlatEndCandidates(disk, target.flatEnds()[0], &directions);
+    addConeSideCandidates(disk, target.radius, target.half_length, &directions);
+    return directions;
   }
 };
 

@@ -316,7 +316,7 @@ struct ConvexTraits {
     return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
   }
   /// The directions among which the shortest separating translation lies
-  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth of a Convex whose faces bound the
   /// hull of its vertices: the face normals, and the vertices' and edge lines'
   /// candidates (feature_candidates.h; docs/penetration_depth.md, section 7).

@@ -3,7 +3,6 @@
 // support (docs/disk_shape_distance.md, section 4); the contact's directions
 // make its depth the exact penetration depth (docs/penetration_depth.md,
 // section 7).
-#include "../disk_penetration_candidates.h"
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 
@@ -62,7 +61,7 @@ struct CylinderTraits {
     return CylinderTarget{double(cylinder.radius), 0.5 * double(cylinder.lz)};
   }
   /// The directions among which the shortest separating translation lies
-  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth. The cylinder's support, h(-w) =
   /// radius |P_z w| + half_length |w_z| - ..., is kinked at w = +-z (its caps'
   /// normals) and on the circle w . z = 0 (its two caps tie). Away from both, one
@@ -75,23 +74,7 @@ struct CylinderTraits {
     std::vector<Vec3> directions = {Vec3::UnitZ()};
     directions.reserve(64);
     addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), &directions);
-    const Mat3 R_disk = (Mat3() << disk.u, disk.v, disk.n).finished();
-    for (const double end : {-target.half_length, target.half_length}) {
-      const Vec3 cap_centre(0.0, 0.0, end);
-      // The smaller of the two disks is the one whose rim Q follows (section 2).
-      const bool disk_is_smaller = disk.r <= target.radius;
-      const PairInFrame1 pair =
-          disk_is_smaller
-              ? PairInFrame1::make(disk.c - cap_centre, R_disk, target.radius, disk.r)
-              : PairInFrame1::make(R_disk.transpose() * (cap_centre - disk.c),
-                                   R_disk.transpose(), disk.r, target.radius);
-      const double scale = pair.scale();
-      const PairInFrame1 unit_pair =
-          PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
-      forEachDiskPairPenetrationCandidate(unit_pair, [&](const Vec3& w) {
-        directions.push_back(disk_is_smaller ? w : Vec3(R_disk * w));
-      });
-    }
+    for (const FlatEnd& end : target.flatEnds()) addFlatEndCandidates(disk, end, &directions);
     return directions;
   }
 };

@@ -64,8 +64,9 @@ struct DiskShapePair<fcl::Sphere<S>> {
     if (contact) {
       const auto depth_along = [&](const Vec3& w) { return disk.support(w) + rho; };
       // Candidates: the disk's normals and the direction from p to the centre.
-      *contact = contactInWorld<S>(X_WS, disk, solution.p, std::array<Vec3, 1>{-solution.p},
-                                   depth_along);
+      *contact = contactInWorld<S>(
+          X_WS, solution.p,
+          shortestSeparation(disk, std::array<Vec3, 1>{-solution.p}, depth_along));
     }
     return true;
   }

@@ -57,7 +57,7 @@ struct TriangleTraits {
                                              triangle.c.template cast<double>())};
   }
   /// The directions among which the shortest separating translation lies
-  /// (contactInWorld adds the disk's normals and both signs), so the contact's
+  /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth: the triangle's normal (zero when
   /// degenerate, then skipped), and the candidates of its vertices and edge
   /// lines (feature_candidates.h; docs/penetration_depth.md, section 7).

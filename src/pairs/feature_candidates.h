@@ -3,12 +3,14 @@
 // a vertex or an edge is the shape's support, F(w) = h_disk(w) + h_shape(-w) is
 // the disk's support against that point or line, and these are the directions
 // at which it is stationary. Capsule and cylinder use them for their segment
-// ends and axis, the polytopes (box, triangle, convex) for all their features.
+// ends and axis, the polytopes (box, triangle, convex) for all their features,
+// cylinder and cone their flat ends.
 #pragma once
 
 #include <cmath>
 #include <vector>
 
+#include "../disk_penetration_candidates.h"
 #include "../disk_shape_solver.h"
 #include "../trig_roots.h"
 
@@ -67,6 +69,32 @@ inline void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const 
     } else {
       directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
     }
+  });
+}
+
+/// Appends the directions where a flat circular end of the shape (centre
+/// (0, 0, z), normal z) is its support: F is there the disk-disk F of the disk
+/// against the end, and its candidates are the disk-disk candidate set
+/// (forEachDiskPairPenetrationCandidate; the smaller disk's rim is the one Q
+/// follows). An end of radius 0 is a vertex.
+inline void addFlatEndCandidates(const DiskInShape& disk, const FlatEnd& end,
+                                 std::vector<Vec3>* directions) {
+  const Vec3 end_centre(0.0, 0.0, end.z);
+  if (!(end.radius > 0.0)) {
+    addVertexCandidates(disk, end_centre, directions);
+    return;
+  }
+  const Mat3 R_disk = (Mat3() << disk.u, disk.v, disk.n).finished();
+  const bool disk_is_smaller = disk.r <= end.radius;
+  const PairInFrame1 pair =
+      disk_is_smaller ? PairInFrame1::make(disk.c - end_centre, R_disk, end.radius, disk.r)
+                      : PairInFrame1::make(R_disk.transpose() * (end_centre - disk.c),
+                                           R_disk.transpose(), disk.r, end.radius);
+  const double scale = pair.scale();
+  const PairInFrame1 unit_pair =
+      PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
+  forEachDiskPairPenetrationCandidate(unit_pair, [&](const Vec3& w) {
+    directions->push_back(disk_is_smaller ? w : Vec3(R_disk * w));
   });
 }
 
