@@ -78,9 +78,25 @@
 // independent long-double reference of test/reference_penetration.h on the
 // first 200 pairs of each family (it costs ~1 ms a pair), and against
 // diskPenetration on every pair; without that header the errors are against
-// diskPenetration only, and labelled so. Writes penetration.csv (one row per
-// query and family) in --out. --no-penetration skips the section,
-// --penetration-only runs nothing else (with --shapes-only: those two sections).
+// diskPenetration only, and labelled so.
+// A second table there: the PD of a Disk against each shape with an exact PD in
+// fcl_disk (Sphere, Box, Capsule, Cylinder, Cone, Convex, Halfspace, Plane,
+// TriangleP; --penetration-pairs N per shape, bench/disk_shape_penetration_cases.h:
+// test_disk_shape_penetration's draws, disk radius 0.2..1, centres in the unit
+// ball, random rotations; fixed seed, kept when fcl_disk::diskShapeIntersect
+// says they intersect). Queries, plain fcl::distance with enable_signed_distance
+// and enable_nearest_points, GST_LIBCCD, timed and probed like the disk pairs:
+//   disk                    Disk(r) against the shape (fcl_disk's hook);
+//   epa_libccd_h1e-6r       FCL's Cylinder(r, 1e-6 r) in the disk's place:
+//                           libccd's EPA on the flat cylinder
+// (FCL 0.7 segfaults on the cylinder against Halfspace and Plane under libccd
+// and has no TriangleP pair: those cells are skipped and named). Error:
+// |(-min_distance) - PD_ref| / (r + 1 + 2) (the test's scale), PD_ref from the
+// independent long-double reference of test/reference_shape_penetration.h on
+// the first 200 pairs of each shape. Writes penetration.csv (one row per query
+// and family, then per query and shape as family "shape:<name>") in --out.
+// --no-penetration skips the section, --penetration-only runs nothing else
+// (with --shapes-only: those two sections).
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
@@ -102,6 +118,7 @@
 #include <stdexcept>
 #include <string>
 #include <tuple>
+#include <type_traits>
 #include <unistd.h>
 #include <vector>
 
@@ -118,6 +135,9 @@
 
 #include "disk_penetration_cases.h"
 #include "reference_penetration.h"
+
+#include "disk_shape_penetration_cases.h"
+#include "reference_shape_penetration.h"
 
 #ifndef FCL_DISK_PLOT_SCRIPT
 #define FCL_DISK_PLOT_SCRIPT "bench/plot_report.py"
@@ -151,11 +171,11 @@ struct Options {
   int shape_pairs = 2000;     ///< disk-vs-shape section: cases per shape
   bool shapes = true;         ///< run the disk-vs-shape section
   bool shapes_only = false;   ///< run only the disk-vs-shape section
-  /// Penetration section: intersecting pairs per family. FCL's thin-cylinder
-  /// EPA costs ~5-300 us a query and runs ~7 times per pair (first answer,
-  /// calibration, 5 batches of one) for each of 3 heights: ~0.7 ms per pair on
-  /// the reference machine (2-core EPYC), so 8 families of 2000 pairs (plus the
-  /// reference on 200 of each) take ~15 s.
+  /// Penetration section: intersecting pairs per family (and per shape). FCL's
+  /// thin-cylinder EPA costs ~5-300 us a query and runs ~7 times per pair (first
+  /// answer, calibration, 5 batches of one) for each of 3 heights: ~0.7 ms per
+  /// pair on the reference machine (2-core EPYC), so 8 families of 2000 pairs
+  /// (plus the reference on 200 of each) take ~15 s.
   int penetration_pairs = 2000;
   bool penetration = true;        ///< run the penetration section
   bool penetration_only = false;  ///< run only the penetration section
@@ -185,8 +205,10 @@ void printUsage(const char* argv0) {
       "  --shapes-only    run only that section\n"
       "Then the penetration depth of intersecting disk pairs (fcl::distance with\n"
       "enable_signed_distance: Disk pairs, fcl_disk::diskPenetration, FCL's EPA on\n"
-      "Cylinder(r, h) pairs; penetration.csv):\n"
-      "  --penetration-pairs N  intersecting pairs per family (default 2000; quick 20)\n"
+      "Cylinder(r, h) pairs), and of a Disk against each shape with an exact PD next to\n"
+      "FCL's EPA on Cylinder(r, 1e-6 r) in its place (penetration.csv):\n"
+      "  --penetration-pairs N  intersecting pairs per family and per shape (default 2000;\n"
+      "                         quick 20)\n"
       "  --no-penetration       skip that section\n"
       "  --penetration-only     run only that section (with --shapes-only: those two)\n",
       argv0, FCL_DISK_DEFAULT_OUT);
@@ -1176,13 +1198,311 @@ dsc::ProbeOutcome probeQuietly(const std::function<int()>& body,
   return outcome;
 }
 
+/// FCL's distance with a fresh result: min_distance starts at max().
+constexpr double kUnanswered = std::numeric_limits<double>::max();
+
+/// Runs `query` once on every pair in a child (probeQuietly): "" when each
+/// call gave an answer, else why not. Exceptions are left to the timing,
+/// which counts them per pair.
+template <typename Pair, typename Query>
+std::string probePenQuery(const std::vector<Pair>& pairs, const Query& query) {
+  const auto outcome = probeQuietly(
+      [&]() -> int {
+        for (const Pair& p : pairs) {
+          double d = 0;
+          try {
+            d = query(p);
+          } catch (const std::exception&) {
+            continue;
+          }
+          if (d == kUnanswered) return 10;
+          if (std::isnan(d)) return 11;
+        }
+        return 0;
+      },
+      [](int code) {
+        return code == 10   ? std::string("no answer (distance left at max)")
+               : code == 11 ? std::string("NaN distance")
+                            : "exit code " + std::to_string(code);
+      });
+  return outcome.ok ? std::string() : outcome.reason;
+}
+
+/// Times one signed-distance `query` on one intersecting pair (timeRepeated)
+/// and adds it to `s`: its time, whether it reported the pair apart, and its
+/// error against PD_ref (NaN: the pair is not referenced) and fcl_disk's PD.
+/// A template, so that the timed calls stay direct.
+template <typename Query>
+void samplePenQuery(const Query& query, const std::string& name, double scale,
+                    double reference, double fcl_disk_pd, const Options& options,
+                    double clock_ns, PenSamples* s) {
+  // libccd's EPA throws std::logic_error on some pairs ("the origin is
+  // outside of the polytope"): a deterministic failure of that pair,
+  // counted and named rather than losing the other pairs.
+  double answer = 0, time_ns = 0;
+  try {
+    std::tie(answer, time_ns) = timeRepeated(query, options, clock_ns);
+  } catch (const std::exception& e) {
+    if (s->threw++ == 0) s->threw_example = name + ": " + exceptionSummary(e);
+    return;
+  }
+  s->ns.push_back(time_ns);
+  if (time_ns > s->slowest_ns) {
+    s->slowest_ns = time_ns;
+    s->slowest_case = name;
+  }
+  if (answer > kReportedApart * scale) ++s->reported_apart;
+  const double pd = -answer;
+  auto relative = [&](double pd_ref) {
+    const double e = std::fabs(pd - pd_ref) / scale;
+    return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
+  };
+  s->err_vs_disk.push_back(relative(fcl_disk_pd));
+  if (std::isnan(reference)) return;
+  const double e = relative(reference);
+  s->err.push_back(e);
+  if (e > s->worst_err) {
+    s->worst_err = e;
+    s->worst_case = name;
+  }
+}
+
+// ---------------------------------------------------------------------------
+// Penetration depth of a Disk against the shapes with an exact PD.
+
+namespace spc = fcl_disk_shape_penetration_cases;
+
+// The independent long-double reference of test_disk_shape_penetration
+// (test/reference_shape_penetration.h: closed forms for the sphere, halfspace
+// and plane, a search over the sphere of directions for the others; no
+// fcl_disk code). The search costs ~1 ms a pair, as the disk pairs' reference
+// does: errors against it come from the first kPenReferencedPairs pairs of
+// each shape.
+template <typename Shape>
+double shapePenReference(const spc::ShapePenCase<Shape>& c) {
+  return static_cast<double>(
+      fcl_disk_shape_penetration_reference::referenceDepth(c.r, c.X_WD, c.shape, c.X_WS));
+}
+
+/// FCL's own signed distance of the disk: its Cylinder(r, h) with h this
+/// fraction of r in the disk's place.
+constexpr double kFlatCylinderRelativeHeight = 1e-6;
+
+/// The shape table's queries, disk first (the denominator of the ratio).
+std::vector<PenQuery> makeShapePenQueries() {
+  return {{"disk", "fcl::distance", PenKind::disk_fcl},
+          {"epa_libccd_h1e-6r", "fcl::distance", PenKind::epa_libccd}};
+}
+constexpr std::size_t kShapeDiskQuery = 0, kShapeFclQuery = 1;
+
+template <typename Shape>
+struct ShapePenPair {
+  explicit ShapePenPair(spc::ShapePenCase<Shape> pair) : c(std::move(pair)) {}
+  spc::ShapePenCase<Shape> c;
+  double reference = std::nan("");  ///< PD_ref (rounded to double); NaN unreferenced
+  double fcl_disk_pd = 0;           ///< -signedDiskShapeDistance().signed_distance
+  std::unique_ptr<fcl::CollisionObjectd> disk, flat_cylinder, shape;
+};
+
+template <typename Shape>
+ShapePenPair<Shape> prepareShapePenPair(spc::ShapePenCase<Shape> c) {
+  ShapePenPair<Shape> p(std::move(c));
+  const double r = p.c.r;
+  p.fcl_disk_pd =
+      -fcl_disk::signedDiskShapeDistance(r, p.c.X_WD, p.c.shape, p.c.X_WS).signed_distance;
+  p.disk = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(r), p.c.X_WD);
+  p.flat_cylinder = std::make_unique<fcl::CollisionObjectd>(
+      std::make_shared<fcl::Cylinderd>(r, kFlatCylinderRelativeHeight * r), p.c.X_WD);
+  p.shape = std::make_unique<fcl::CollisionObjectd>(std::make_shared<Shape>(p.c.shape), p.c.X_WS);
+  return p;
+}
+
+/// One signed-distance query, the disk (or its flat cylinder) as object 1;
+/// FCL's raw min_distance.
+template <typename Shape>
+inline double shapePenQuery(const PenQuery& q, const ShapePenPair<Shape>& p) {
+  fcl::DistanceRequestd request;
+  request.enable_signed_distance = true;
+  request.enable_nearest_points = true;
+  request.gjk_solver_type = fcl::GST_LIBCCD;
+  fcl::DistanceResultd result;
+  fcl::distance(q.kind == PenKind::disk_fcl ? p.disk.get() : p.flat_cylinder.get(), p.shape.get(),
+                request, result);
+  return result.min_distance;
+}
+
+/// One shape's raw figures: per query, the samples or why it was skipped; and
+/// the referenced pairs where the disk misses the 1e-12 bound.
+struct ShapePenResult {
+  std::string shape;
+  std::size_t generated = 0;
+  std::vector<PenSamples> samples;
+  std::vector<std::string> skipped;
+  std::vector<std::string> above_bound;
+};
+
+template <typename Shape>
+ShapePenResult measureShapePenetration(const std::vector<PenQuery>& queries,
+                                       const Options& options, double clock_ns,
+                                       const std::string& label, Progress* progress,
+                                       std::size_t done) {
+  const std::size_t n = static_cast<std::size_t>(options.penetration_pairs);
+  ShapePenResult result;
+  result.shape = spc::shapePenName(static_cast<const Shape*>(nullptr));
+  result.samples.resize(queries.size());
+  result.skipped.resize(queries.size());
+  progress->update(done, label + ": pairs", true);
+  std::vector<ShapePenPair<Shape>> pairs;
+  pairs.reserve(n);
+  for (spc::ShapePenCase<Shape>& c : spc::makeShapePenCases<Shape>(n, options.seed))
+    pairs.push_back(prepareShapePenPair(std::move(c)));
+  result.generated = pairs.size();
+
+  progress->update(done, label + ": reference", true);
+  for (std::size_t i = 0; i < pairs.size() && i < kPenReferencedPairs; ++i) {
+    ShapePenPair<Shape>& p = pairs[i];
+    p.reference = shapePenReference(p.c);
+    if (!(std::fabs(p.fcl_disk_pd - p.reference) <= kPenBound * p.c.scale)) {
+      char line[256];
+      std::snprintf(line, sizeof line, "%s: fcl_disk %.17g, reference %.17g, error %.1e",
+                    p.c.name.c_str(), p.fcl_disk_pd, p.reference,
+                    std::fabs(p.fcl_disk_pd - p.reference) / p.c.scale);
+      result.above_bound.push_back(line);
+    }
+  }
+
+  // Both queries once over the pairs, in a child: FCL 0.7 crashes on the flat
+  // cylinder against Halfspace and Plane under libccd, and has no TriangleP pair.
+  progress->update(done, label + ": probe", true);
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    result.skipped[q] = probePenQuery(
+        pairs, [&](const ShapePenPair<Shape>& p) { return shapePenQuery(queries[q], p); });
+  }
+
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const ShapePenPair<Shape>& p = pairs[i];
+    for (std::size_t j = 0; j < queries.size(); ++j) {
+      const std::size_t q = (i + j) % queries.size();  // rotate the order
+      if (!result.skipped[q].empty()) continue;
+      samplePenQuery([&]() { return shapePenQuery(queries[q], p); }, p.c.name, p.c.scale,
+                     p.reference, p.fcl_disk_pd, options, clock_ns, &result.samples[q]);
+    }
+    progress->update(done + i + 1, label + ": timing");
+  }
+  return result;
+}
+
+/// The second table of the penetration section: a Disk against each shape with
+/// an exact PD, next to FCL's EPA on the flat cylinder. Prints the table and its
+/// notes; returns the CSV rows (per shape: disk, then FCL; family "shape:<name>").
+std::vector<PenSummary> runShapePenetration(const Options& options, double clock_ns) {
+  const std::vector<PenQuery> queries = makeShapePenQueries();
+  const std::size_t n = static_cast<std::size_t>(options.penetration_pairs);
+  std::size_t num_shapes = 0;
+  spc::forEachExactPenetrationShape([&](auto*) { ++num_shapes; });
+
+  std::vector<ShapePenResult> results;
+  const auto run_start = Clock::now();
+  {
+    Progress progress(num_shapes * n);
+    std::size_t done = 0;
+    spc::forEachExactPenetrationShape([&](auto* tag) {
+      using Shape = std::remove_pointer_t<decltype(tag)>;
+      const std::string label = "penetration shape " + std::to_string(results.size() + 1) +
+                                "/" + std::to_string(num_shapes) + " " +
+                                spc::shapePenName(static_cast<const Shape*>(nullptr));
+      results.push_back(
+          measureShapePenetration<Shape>(queries, options, clock_ns, label, &progress, done));
+      done += n;
+    });
+    progress.finish();
+  }
+  const double run_seconds = nsBetween(run_start, Clock::now()) * 1e-9;
+
+  std::vector<PenSummary> rows;
+  for (const ShapePenResult& r : results) {
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+      PenSummary s = summarisePen(queries[q], "shape:" + r.shape, r.samples[q]);
+      s.measured = r.skipped[q].empty();
+      s.skip_reason = r.skipped[q];
+      rows.push_back(s);
+    }
+  }
+
+  std::printf("\n## Penetration depth of a Disk against the shapes with an exact PD "
+              "(fcl::distance, enable_signed_distance; %d intersecting pairs per shape, seed "
+              "%llu)\n\n",
+              options.penetration_pairs, static_cast<unsigned long long>(options.seed));
+  std::printf("Timed as the disk pairs above; the table took %.0f s. Pairs: "
+              "bench/disk_shape_penetration_cases.h (test_disk_shape_penetration's draws: disk "
+              "r uniform in 0.2..1, shapes of size ~0.5, both centres uniform in the unit ball, "
+              "uniform rotations), kept when fcl_disk::diskShapeIntersect says they intersect. "
+              "disk = Disk(r) against the shape (fcl_disk's hook); FCL = FCL's "
+              "Cylinder(r, 1e-6 r) in the disk's place (libccd's EPA; its PD exceeds the "
+              "disk's by up to 1e-6 r, so its error is at least that much from the model "
+              "alone); both GST_LIBCCD with enable_nearest_points. FCL / disk = ratio of the "
+              "median times.\n",
+              run_seconds);
+  std::printf("err = |(-min_distance) - PD_ref| / (r + 1 + 2) over the first %zu pairs of "
+              "each shape (ref pairs), PD_ref: long-double reference "
+              "(test/reference_shape_penetration.h).\n\n",
+              kPenReferencedPairs);
+  std::printf("| shape | pairs | ref pairs | disk median ns | disk p99 ns | disk max err | FCL "
+              "median ns | FCL p99 ns | FCL max err | FCL / disk |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  auto cells = [](const PenSummary& s) {
+    if (!s.measured) return std::string("skipped | |");
+    return formatNs(s.median_ns) + " | " + formatNs(s.p99_ns) + " | " + formatErr(s.max_err);
+  };
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const PenSummary& disk = rows[k * queries.size() + kShapeDiskQuery];
+    const PenSummary& fcl = rows[k * queries.size() + kShapeFclQuery];
+    char ratio[32] = "-";
+    if (disk.measured && fcl.measured)
+      std::snprintf(ratio, sizeof ratio, "%.1fx", fcl.median_ns / disk.median_ns);
+    std::string pairs = std::to_string(results[k].generated);
+    if (fcl.threw > 0) pairs += " (FCL threw on " + std::to_string(fcl.threw) + ")";
+    const std::size_t referenced = std::min(results[k].generated, kPenReferencedPairs);
+    std::printf("| %s | %s | %zu | %s | %s | %s |\n", results[k].shape.c_str(), pairs.c_str(),
+                referenced, cells(disk).c_str(), cells(fcl).c_str(), ratio);
+  }
+
+  bool any_note = false;
+  auto note = [&](const std::string& text) {
+    if (!any_note) std::printf("\nNotes:\n");
+    any_note = true;
+    std::printf("- %s\n", text.c_str());
+  };
+  for (std::size_t k = 0; k < results.size(); ++k) {
+    const ShapePenResult& r = results[k];
+    if (r.generated < n)
+      note(r.shape + ": only " + std::to_string(r.generated) + " of " + std::to_string(n) +
+           " pairs generated");
+    for (std::size_t q = 0; q < queries.size(); ++q) {
+      const PenSummary& s = rows[k * queries.size() + q];
+      if (!s.measured)
+        note(r.shape + " / " + s.query + ": not measured (probed in a child first): " +
+             s.skip_reason);
+      if (s.threw > 0)
+        note(r.shape + " / " + s.query + ": threw on " + std::to_string(s.threw) + " of " +
+             std::to_string(s.pairs + s.threw) + " pairs (not timed, no error), first " +
+             s.threw_example);
+      if (s.reported_apart > 0)
+        note(r.shape + " / " + s.query + ": " + std::to_string(s.reported_apart) + " of " +
+             std::to_string(s.pairs) +
+             " intersecting pairs reported apart (min_distance > 1e-12 of the scene)");
+    }
+    for (std::size_t i = 0; i < r.above_bound.size() && i < 12; ++i)
+      note("fcl_disk above the 1e-12 bound: " + r.above_bound[i]);
+  }
+  return rows;
+}
+
 int runPenetrationSection(const Options& options, double clock_ns) {
   const auto& families = pen::allPenFamilies();
   const std::vector<PenQuery> queries = makePenQueries();
   const std::size_t num_queries = queries.size();
   const std::size_t n = static_cast<std::size_t>(options.penetration_pairs);
-  // FCL's distance with a fresh result: min_distance starts at max().
-  constexpr double kUnanswered = std::numeric_limits<double>::max();
 
   std::vector<std::vector<PenSamples>> samples(families.size(),
                                                std::vector<PenSamples>(num_queries));
@@ -1239,27 +1559,10 @@ int runPenetrationSection(const Options& options, double clock_ns) {
       // not finish (FCL's EPA on degenerate simplices may crash or loop).
       progress.update(done, std::string(label) + ": probe", true);
       for (std::size_t q = 0; q < num_queries; ++q) {
-        if (!queries[q].isFcl()) continue;
-        const auto outcome = probeQuietly(
-            [&]() -> int {
-              for (const PenPair& p : pairs) {
-                double d = 0;
-                try {
-                  d = penQuery(queries[q], p);
-                } catch (const std::exception&) {
-                  continue;  // counted per pair when timing
-                }
-                if (d == kUnanswered) return 10;
-                if (std::isnan(d)) return 11;
-              }
-              return 0;
-            },
-            [](int code) {
-              return code == 10   ? std::string("no answer (distance left at max)")
-                     : code == 11 ? std::string("NaN distance")
-                                  : "exit code " + std::to_string(code);
-            });
-        if (!outcome.ok) skipped[f][q] = outcome.reason;
+        if (queries[q].isFcl()) {
+          skipped[f][q] =
+              probePenQuery(pairs, [&](const PenPair& p) { return penQuery(queries[q], p); });
+        }
       }
 
       for (std::size_t i = 0; i < pairs.size(); ++i) {
@@ -1267,37 +1570,8 @@ int runPenetrationSection(const Options& options, double clock_ns) {
         for (std::size_t j = 0; j < num_queries; ++j) {
           const std::size_t q = (i + j) % num_queries;  // rotate the order
           if (!skipped[f][q].empty()) continue;
-          PenSamples& s = samples[f][q];
-          // libccd's EPA throws std::logic_error on some pairs ("the origin is
-          // outside of the polytope"): a deterministic failure of that pair,
-          // counted and named rather than losing the family's other pairs.
-          double answer = 0, time_ns = 0;
-          try {
-            std::tie(answer, time_ns) =
-                timeRepeated([&]() { return penQuery(queries[q], p); }, options, clock_ns);
-          } catch (const std::exception& e) {
-            if (s.threw++ == 0) s.threw_example = p.c.name + ": " + exceptionSummary(e);
-            continue;
-          }
-          s.ns.push_back(time_ns);
-          if (time_ns > s.slowest_ns) {
-            s.slowest_ns = time_ns;
-            s.slowest_case = p.c.name;
-          }
-          if (answer > kReportedApart * p.c.scale) ++s.reported_apart;
-          const double pd = -answer;
-          auto relative = [&](double pd_ref) {
-            const double e = std::fabs(pd - pd_ref) / p.c.scale;
-            return std::isnan(e) ? std::numeric_limits<double>::infinity() : e;
-          };
-          s.err_vs_disk.push_back(relative(p.fcl_disk_pd));
-          if (std::isnan(p.reference)) continue;
-          const double e = relative(p.reference);
-          s.err.push_back(e);
-          if (e > s.worst_err) {
-            s.worst_err = e;
-            s.worst_case = p.c.name;
-          }
+          samplePenQuery([&]() { return penQuery(queries[q], p); }, p.c.name, p.c.scale,
+                         p.reference, p.fcl_disk_pd, options, clock_ns, &samples[f][q]);
         }
         progress.update(done + i + 1, std::string(label) + ": timing");
       }
@@ -1465,7 +1739,10 @@ int runPenetrationSection(const Options& options, double clock_ns) {
     }
   }
 
-  // CSV: one row per (query, family), "all" last per query.
+  const std::vector<PenSummary> shape_rows = runShapePenetration(options, clock_ns);
+
+  // CSV: one row per (query, family), "all" last per query; then per shape
+  // (family "shape:<name>") the disk's row and FCL's.
   std::error_code ec;
   std::filesystem::create_directories(options.out_dir, ec);
   const std::string csv_path = options.out_dir + "/penetration.csv";
@@ -1478,22 +1755,24 @@ int runPenetrationSection(const Options& options, double clock_ns) {
     csv << "query,path,family,pairs,referenced_pairs,median_ns,p99_ns,median_rel_err,"
            "max_rel_err,worst_case,max_rel_err_vs_fcl_disk,over_disk,reported_apart,threw,"
            "threw_first,slowest_ns,slowest_case,reference,not_measured\n";
-    const char* reference = "reference_penetration";
-    for (std::size_t q = 0; q < num_queries; ++q) {
-      for (std::size_t f = 0; f < table.size(); ++f) {
-        const PenSummary& s = table[f][q];
-        const PenSummary& disk = table[f][kDiskQuery];
-        csv << s.query << ',' << s.path << ',' << s.family << ',' << s.pairs << ','
-            << s.referenced << ',' << csvNumber(s.median_ns) << ',' << csvNumber(s.p99_ns) << ','
-            << csvNumber(s.median_err) << ',' << csvNumber(s.max_err) << ',' << s.worst_case
-            << ',' << csvNumber(s.max_err_vs_disk) << ','
-            << csvNumber(s.measured && disk.measured ? s.median_ns / disk.median_ns
-                                                     : std::nan(""))
-            << ',' << s.reported_apart << ',' << s.threw << ',' << csvQuoted(s.threw_example)
-            << ',' << csvNumber(s.slowest_ns) << ',' << s.slowest_case << ',' << reference << ','
-            << csvQuoted(s.skip_reason) << '\n';
-      }
-    }
+    auto row = [&](const PenSummary& s, const PenSummary& disk, const char* reference) {
+      csv << s.query << ',' << s.path << ',' << s.family << ',' << s.pairs << ','
+          << s.referenced << ',' << csvNumber(s.median_ns) << ',' << csvNumber(s.p99_ns) << ','
+          << csvNumber(s.median_err) << ',' << csvNumber(s.max_err) << ',' << s.worst_case
+          << ',' << csvNumber(s.max_err_vs_disk) << ','
+          << csvNumber(s.measured && disk.measured ? s.median_ns / disk.median_ns
+                                                   : std::nan(""))
+          << ',' << s.reported_apart << ',' << s.threw << ',' << csvQuoted(s.threw_example)
+          << ',' << csvNumber(s.slowest_ns) << ',' << s.slowest_case << ',' << reference << ','
+          << csvQuoted(s.skip_reason) << '\n';
+    };
+    for (std::size_t q = 0; q < num_queries; ++q)
+      for (std::size_t f = 0; f < table.size(); ++f)
+        row(table[f][q], table[f][kDiskQuery], "reference_penetration");
+    const std::size_t per_shape = makeShapePenQueries().size();
+    for (std::size_t i = 0; i < shape_rows.size(); ++i)
+      row(shape_rows[i], shape_rows[i - i % per_shape + kShapeDiskQuery],
+          "reference_shape_penetration");
   }
   std::printf("\nwrote %s\n", csv_path.c_str());
   return 0;

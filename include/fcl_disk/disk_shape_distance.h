@@ -70,9 +70,9 @@ struct DiskShapeDistanceResult {
 /// frame touches only to rounding in another): distance 0, the disk's point as
 /// the common point, as diskShapeIntersect() decides. Where the iteration
 /// stops next to a grazing overlap without proving either answer, the shapes
-/// of kExactDiskShapePenetration decide it by the sign of the shortest
-/// separation over their penetration candidates (exact whatever the sign):
-/// overlap, distance 0 at the iteration's disk point.
+/// of kExactDiskShapePenetration take the shortest separation over their
+/// penetration candidates (the penetration depth, whatever its sign): deeper
+/// than 1e-7 * scale, an overlap, distance 0 at the iteration's disk point.
 /// Ties (parallel faces, a segment parallel to the disk): the pair the
 /// iteration reaches, deterministic for a given input.
 ///

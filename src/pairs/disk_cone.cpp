@@ -92,8 +92,10 @@ struct ConeTarget {
 /// to the rim tangent t(theta). Eliminating phi:
 ///   G(theta) = (2h)^2 (g_xy . t_xy)^2 - rho^2 t_z^2 |g_xy|^2 = 0,
 /// a trigonometric polynomial of degree 4 (every root, trig_roots.h; squaring
-/// adds only candidates, each an upper bound). A rim point on the axis
-/// (g_xy = 0) leaves phi to the second condition alone.
+/// adds only candidates, each an upper bound). Each root's phi is taken from
+/// both conditions: from g_xy (undefined where the rim point is on the axis)
+/// and from m . t = 0 (two solutions; ill-conditioned where t is nearly
+/// vertical), all appended.
 inline void addConeSideCandidates(const DiskInShape& disk, double radius, double half_length,
                                   std::vector<Vec3>* directions) {
   using namespace trig_roots;
@@ -119,10 +121,9 @@ inline void addConeSideCandidates(const DiskInShape& disk, double radius, double
   forEachRootAngle(TrigPolynomial::fromSamples(samples), noise, [&](double cos_theta, double sin_theta) {
     const Vec3 g = d + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
     const double g_xy = std::hypot(g.x(), g.y());
-    if (g_xy > kRimPointOnLine * size) {
+    if (g_xy > 0.0) {
       directions->push_back(normal_at(g.x() / g_xy, g.y() / g_xy));
       directions->push_back(normal_at(-g.x() / g_xy, -g.y() / g_xy));
-      return;
     }
     // m . t = 0: 2h (t_x cos phi + t_y sin phi) = -rho t_z.
     const Vec3 t = cos_theta * disk.v - sin_theta * disk.u;

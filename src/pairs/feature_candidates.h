@@ -17,12 +17,6 @@
 namespace fcl_disk {
 namespace internal {
 
-/// A rim point closer than this (relative to r + its distance to the line) to
-/// an edge line has no direction away from it of its own: the candidate is
-/// normal to the line and the rim tangent instead (what the direction away
-/// tends to as it vanishes).
-constexpr double kRimPointOnLine = 1e-9;
-
 /// Appends the directions b - s from the rim points b nearest and farthest a
 /// vertex s: where the vertex is the shape's support, F(w) = h_disk(w) - s.w,
 /// stationary where the disk's support point b has b - s along w, i.e. b - s
@@ -47,7 +41,10 @@ inline void addVertexCandidates(const DiskInShape& disk, const Vec3& s,
 /// (w normal to e and to the rim tangent b') give
 ///   E(theta) = ((b - s).e)(e.b') - (b - s).b' = 0,
 /// a trigonometric polynomial of degree 2 (every root, trig_roots.h), and
-/// w = b - x. With d = c - s, a = d.e:
+/// w = b - x, which is also e x b' (w is normal to both). Both are appended:
+/// e x b' knows w to the root's accuracy where b is near the line (a vertex
+/// on the rim, a touching pair) and b - x where e is nearly along b'. With
+/// d = c - s, a = d.e:
 ///   E = (a e.v - d.v) cos + (d.u - a e.u) sin + r (e.u)(e.v) cos 2theta
 ///       + r ((e.v)^2 - (e.u)^2)/2 sin 2theta   (b' taken for r = 1).
 inline void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e,
@@ -63,12 +60,8 @@ inline void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const 
   const double size = d.norm() + disk.r;  // bounds |E|'s terms
   forEachRootAngle(E, kBernsteinNoise * size, [&](double cos_theta, double sin_theta) {
     const Vec3 b = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
-    const Vec3 away = (b - s) - (b - s).dot(e) * e;  // b - x
-    if (away.norm() > kRimPointOnLine * size) {
-      directions->push_back(away);
-    } else {
-      directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
-    }
+    directions->push_back((b - s) - (b - s).dot(e) * e);  // b - x
+    directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
   });
 }
 

@@ -16,7 +16,12 @@
 // lower_bound <= distance, the aligned gap matched within kFuzzRelative* of the
 // scene where the certificate is closed (else lower_bound <= truth <=
 // distance), and diskShapeIntersect agreeing with distance 0 outside the
-// touching band. Bounds are loose multiples of the documented ones: the fuzzer hunts
+// touching band. An intersecting pair of a shape with an exact penetration
+// depth (kExactDiskShapePenetration; bounded shapes here): the contact's depth
+// is the shortest separating translation, depth <= F(w) = h_disk(w) +
+// h_shape(-w) on the disk's normals, the shape frame's axes and a Fibonacci
+// sphere of directions, a step past it along the normal separates and a step
+// short of it does not. Bounds are loose multiples of the documented ones: the fuzzer hunts
 // crashes, hangs and gross errors; the tests hold the exact bounds.
 #include <fcl_disk/disk_shape_distance.h>
 
@@ -30,6 +35,7 @@
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "disk_shape_fcl.h"
 #include "disk_shape_oracle.h"
@@ -118,6 +124,72 @@ bool describesPair(const Shape& s, S r, const fcl::Transform3<S>& X_WD, const fc
          fcl_disk::isValidDiskPose(X_WS) && finite_lengths();
 }
 
+/// The penetration depth's checks (see the top): `tolerance` as check()'s.
+template <typename S>
+void checkPenetration(const Shape& shape, const fcl::ShapeBase<S>& fcl_shape, S r,
+                      const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS, const Disk& disk,
+                      const Pose& X, Real tolerance, const char* detail) {
+  const bool exact = withShapeClass(fcl_shape, [](const auto& typed) {
+    return fcl_disk::kExactDiskShapePenetration<std::decay_t<decltype(typed)>>;
+  });
+  if (!exact || shape.kind == Kind::halfspace || shape.kind == Kind::plane) return;
+  fcl_disk::DiskContact<S> contact;
+  if (!withShapeClass(fcl_shape, [&](const auto& typed) {
+        return fcl_disk::diskShapeIntersect(r, X_WD, typed, X_WS, &contact);
+      })) {
+    return;
+  }
+  const Real depth = Real(contact.penetration_depth);
+  const V3 normal = contact.normal.template cast<Real>();
+  const auto text = [](Real x) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", double(x));
+    return std::string(buffer);
+  };
+  std::string with_depth = std::string(detail) + "\n  depth " + text(depth) + " along (" +
+                           text(normal.x()) + " " + text(normal.y()) + " " + text(normal.z()) +
+                           "), tolerance " + text(tolerance);
+  for (const V3& v : shape.vertices) {
+    with_depth += "\n  vertex " + text(v.x()) + " " + text(v.y()) + " " + text(v.z());
+  }
+  if (!(std::isfinite(double(depth)) && depth >= 0 && std::abs(normal.norm() - 1) <= 1e-6)) {
+    fail("the contact's depth is finite, >= 0, along a unit normal", with_depth);
+  }
+  // F(w): translating the shape by F(w) w separates along w.
+  const auto separating_length = [&](const V3& w) {
+    const V3 lowest = X.t + X.R * supportPoint(shape, X.R.transpose() * -w);
+    return disk.supportPoint(w).dot(w) - lowest.dot(w);
+  };
+  std::vector<V3> directions = {disk.normal(), -disk.normal()};
+  for (int i = 0; i < 3; ++i) directions.insert(directions.end(), {X.R.col(i), -X.R.col(i)});
+  constexpr int kSphereDirections = 64;
+  for (int k = 0; k < kSphereDirections; ++k) {
+    const Real z = 1 - (2 * k + 1) / Real(kSphereDirections), ring = std::sqrt(1 - z * z);
+    const Real angle = k * Real(2.399963229728653);  // the golden angle
+    directions.emplace_back(ring * std::cos(angle), ring * std::sin(angle), z);
+  }
+  for (const V3& w : directions) {
+    if (!(depth <= separating_length(w) + tolerance)) {
+      fail("depth <= F(w) for every direction w (the shortest translation)",
+           with_depth + "\n  F(w) " + text(separating_length(w)) + " along (" + text(w.x()) +
+               " " + text(w.y()) + " " + text(w.z()) + ")");
+    }
+  }
+  // A step far above the tolerance: each side is decided robustly.
+  const Real step = 1e3 * tolerance;
+  const auto moved = [&](Real length) {
+    fcl::Transform3<S> X_moved = X_WS;
+    X_moved.translation() = (X.t + length * normal).template cast<S>();
+    return X_moved;
+  };
+  if (diskShapeIntersectAny(r, X_WD, fcl_shape, moved(depth + step))) {
+    fail("moving the shape by (depth + step) normal separates", with_depth);
+  }
+  if (depth > 2 * step && !diskShapeIntersectAny(r, X_WD, fcl_shape, moved(depth - step))) {
+    fail("moving the shape by (depth - step) normal leaves them intersecting", with_depth);
+  }
+}
+
 template <typename S>
 void check(const Shape& wanted, S r, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS,
            Real truth) {
@@ -193,6 +265,7 @@ void check(const Shape& wanted, S r, const fcl::Transform3<S>& X_WD, const fcl::
   const Real band = 1e3 * tolerance;
   if (result.distance == 0 && !intersect) fail("distance 0 means intersecting", detail);
   if (Real(result.distance) > band && intersect) fail("apart means not intersecting", detail);
+  if (intersect) checkPenetration<S>(shape, *fcl_shape, r, X_WD, X_WS, disk, X, tolerance, detail);
 }
 
 template <typename S>
