@@ -2,7 +2,7 @@
 // whole circle, found rigorously (every root, and a candidate at every place a
 // double root may hide): the polynomial is mapped to two bounded charts,
 // theta = 2 atan t and pi + 2 atan t with t in [-1, 1], where it becomes an
-// algebraic polynomial of degree 8, whose roots are isolated by Bernstein
+// algebraic polynomial of twice its degree, whose roots are isolated by Bernstein
 // subdivision (Descartes' rule) and polished by Newton steps within their
 // brackets. Used by the penetration-depth solvers; derivation in
 // docs/penetration_depth.md, section 2.
@@ -19,8 +19,9 @@ namespace internal {
 namespace trig_roots {
 
 /// The largest degree handled as a trigonometric polynomial, and the degree of
-/// the algebraic polynomial it becomes on a chart (t = tan(theta / 2)).
-/// Lower degrees are handled as degree 4 with zero coefficients.
+/// the algebraic polynomial it becomes on a chart (t = tan(theta / 2)). A
+/// polynomial of lower degree D is searched as one (forEachRootAngle<D>): its
+/// chart polynomial has degree 2 D, half the subdivision work.
 constexpr int kTrigDegree = 4;
 constexpr int kPolyDegree = 2 * kTrigDegree;
 /// Samples that determine a trigonometric polynomial of degree 4.
@@ -85,47 +86,51 @@ struct AngleTable {
   }
 };
 
-/// An algebraic polynomial p[0] + p[1] t + ... + p[8] t^8.
-using Polynomial = std::array<double, kPolyDegree + 1>;
+/// An algebraic polynomial p[0] + p[1] t + ... + p[N] t^N.
+template <int N>
+using Polynomial = std::array<double, N + 1>;
 
-/// (1 + t^2)^4 cos(k theta) and (1 + t^2)^4 sin(k theta) at theta = 2 atan(t):
-/// the real and imaginary parts of (1 + i t)^(2k) (1 + t^2)^(4 - k), since
+/// (1 + t^2)^D cos(k theta) and (1 + t^2)^D sin(k theta) at theta = 2 atan(t):
+/// the real and imaginary parts of (1 + i t)^(2k) (1 + t^2)^(D - k), since
 /// e^{i theta} = (1 + i t)^2 / (1 + t^2). Integer coefficients.
+template <int D>
 struct ChartBasis {
-  std::array<Polynomial, kTrigDegree + 1> cos_k{}, sin_k{};
+  std::array<Polynomial<2 * D>, D + 1> cos_k{}, sin_k{};
   ChartBasis() {
-    for (int k = 0; k <= kTrigDegree; ++k) {
+    for (int k = 0; k <= D; ++k) {
       // (1 + i t)^(2k) = sum_j binom(2k, j) i^j t^j.
       using Complex = std::complex<double>;
-      std::array<Complex, kPolyDegree + 1> power{};
+      std::array<Complex, 2 * D + 1> power{};
       double binom = 1;
       for (int j = 0; j <= 2 * k; ++j) {
         static constexpr Complex kIPowers[4] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
         power[j] = binom * kIPowers[j % 4];
         binom = binom * (2 * k - j) / (j + 1);
       }
-      // times (1 + t^2)^(4 - k) = sum_l binom(4 - k, l) t^(2l).
+      // times (1 + t^2)^(D - k) = sum_l binom(D - k, l) t^(2l).
       double binom_l = 1;
-      for (int l = 0; l <= kTrigDegree - k; ++l) {
+      for (int l = 0; l <= D - k; ++l) {
         for (int j = 0; j <= 2 * k; ++j) {
           cos_k[k][j + 2 * l] += binom_l * power[j].real();
           sin_k[k][j + 2 * l] += binom_l * power[j].imag();
         }
-        binom_l = binom_l * (kTrigDegree - k - l) / (l + 1);
+        binom_l = binom_l * (D - k - l) / (l + 1);
       }
     }
   }
 };
 
-/// f on the chart theta = offset + 2 atan(t), times (1 + t^2)^4; offset 0 or
-/// pi (cos and sin of k(pi + phi) are (-1)^k those of k phi).
-inline Polynomial onChart(const TrigPolynomial& f, bool shifted_by_pi) {
-  static const ChartBasis basis;
-  Polynomial p{};
-  for (int k = 0; k <= kTrigDegree; ++k) {
+/// f (of degree <= D) on the chart theta = offset + 2 atan(t), times
+/// (1 + t^2)^D; offset 0 or pi (cos and sin of k(pi + phi) are (-1)^k those of
+/// k phi).
+template <int D>
+Polynomial<2 * D> onChart(const TrigPolynomial& f, bool shifted_by_pi) {
+  static const ChartBasis<D> basis;
+  Polynomial<2 * D> p{};
+  for (int k = 0; k <= D; ++k) {
     const double sign = shifted_by_pi && k % 2 == 1 ? -1.0 : 1.0;
     const double C = sign * f.C[k], S = sign * f.S[k];
-    for (int j = 0; j <= kPolyDegree; ++j) p[j] += C * basis.cos_k[k][j] + S * basis.sin_k[k][j];
+    for (int j = 0; j <= 2 * D; ++j) p[j] += C * basis.cos_k[k][j] + S * basis.sin_k[k][j];
   }
   return p;
 }
@@ -171,41 +176,46 @@ inline double rootInBracket(const double* p, const double* dp, int degree, doubl
   return t;
 }
 
-/// p in the Bernstein basis of [-1, 1]: p(t) = sum_i b_i binom(8, i) s^i (1 - s)^(8 - i)
+/// p in the Bernstein basis of [-1, 1]: p(t) = sum_i b_i binom(N, i) s^i (1 - s)^(N - i)
 /// with t = 2 s - 1. By Descartes' rule for this basis, p has at most as many
 /// roots in the interval as b has sign changes, and the same parity.
-using Bernstein = std::array<double, kPolyDegree + 1>;
+template <int N>
+using Bernstein = std::array<double, N + 1>;
 
-inline Bernstein toBernstein(const Polynomial& p) {
+template <int N>
+Bernstein<N> toBernstein(const Polynomial<N>& p) {
   // q(s) = p(2 s - 1) by Horner's scheme on polynomials in s.
-  Polynomial q{};
-  for (int j = kPolyDegree; j >= 0; --j) {
-    for (int i = kPolyDegree; i >= 1; --i) q[i] = 2 * q[i - 1] - q[i];
+  Polynomial<N> q{};
+  for (int j = N; j >= 0; --j) {
+    for (int i = N; i >= 1; --i) q[i] = 2 * q[i - 1] - q[i];
     q[0] = p[j] - q[0];
   }
-  // b_i = sum_{j <= i} binom(i, j) / binom(8, j) q_j.
+  // b_i = sum_{j <= i} binom(i, j) / binom(N, j) q_j.
   struct Weights {
-    double w[kPolyDegree + 1][kPolyDegree + 1] = {};
+    double w[N + 1][N + 1] = {};
     Weights() {
-      static constexpr double kBinom8[kPolyDegree + 1] = {1, 8, 28, 56, 70, 56, 28, 8, 1};
-      for (int i = 0; i <= kPolyDegree; ++i) {
+      double binom_N[N + 1];
+      binom_N[0] = 1;
+      for (int j = 0; j < N; ++j) binom_N[j + 1] = binom_N[j] * (N - j) / (j + 1);
+      for (int i = 0; i <= N; ++i) {
         double binom_ij = 1;  // binom(i, j)
         for (int j = 0; j <= i; ++j) {
-          w[i][j] = binom_ij / kBinom8[j];
+          w[i][j] = binom_ij / binom_N[j];
           binom_ij = binom_ij * (i - j) / (j + 1);
         }
       }
     }
   };
   static const Weights weights;
-  Bernstein b{};
-  for (int i = 0; i <= kPolyDegree; ++i) {
+  Bernstein<N> b{};
+  for (int i = 0; i <= N; ++i) {
     for (int j = 0; j <= i; ++j) b[i] += weights.w[i][j] * q[j];
   }
   return b;
 }
 
-inline int signChanges(const Bernstein& b) {
+template <typename Coefficients>
+int signChanges(const Coefficients& b) {
   int changes = 0;
   double last = 0.0;
   for (const double x : b) {
@@ -256,10 +266,11 @@ constexpr int kMaxChartCandidates = 2 * kMaxIntervals + 2 * kPolyDegree;
 ///   holds a root exactly when p changes sign over it.
 /// Undecided intervals are halved, down to kMaxSubdivisions (then the midpoint
 /// is the candidate), within a budget of kMaxIntervals.
-inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
-  Polynomial dp{}, ddp{};
-  for (int j = 0; j < kPolyDegree; ++j) dp[j] = (j + 1) * p[j + 1];
-  for (int j = 0; j + 1 < kPolyDegree; ++j) ddp[j] = (j + 1) * dp[j + 1];
+template <int N>
+int rootsOnChart(const Polynomial<N>& p, double noise, double* out) {
+  Polynomial<N> dp{}, ddp{};
+  for (int j = 0; j < N; ++j) dp[j] = (j + 1) * p[j + 1];
+  for (int j = 0; j + 1 < N; ++j) ddp[j] = (j + 1) * dp[j + 1];
   int count = 0;
   const auto add = [&](double t) {
     if (count < kMaxChartCandidates) out[count++] = t;
@@ -271,17 +282,17 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
   // rounding instead of the root.
   const auto rootIfSignChange = [&](double lo, double hi, double p_lo, double p_hi) {
     if (std::abs(p_lo) > noise && std::abs(p_hi) > noise && (p_lo < 0) != (p_hi < 0)) {
-      add(rootInBracket(p.data(), dp.data(), kPolyDegree, lo, hi, p_lo));
+      add(rootInBracket(p.data(), dp.data(), N, lo, hi, p_lo));
     }
   };
   struct Interval {
-    Bernstein b;
+    Bernstein<N> b;
     double lo, hi;
     int depth;
   };
   std::array<Interval, kMaxSubdivisions + 2> stack;
   int size = 0, examined = 0;
-  stack[size++] = {toBernstein(p), -1.0, 1.0, 0};
+  stack[size++] = {toBernstein<N>(p), -1.0, 1.0, 0};
   while (size > 0) {
     const Interval interval = stack[--size];
     const double mid = 0.5 * (interval.lo + interval.hi);
@@ -289,25 +300,25 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
       add(mid);
       continue;
     }
-    const Bernstein& b = interval.b;
+    const Bernstein<N>& b = interval.b;
     // An end within the noise of zero may be a root that does not change sign
     // (a double root where a halving fell, as on the symmetry axis of a
     // symmetric pair): a candidate, whatever the interior holds.
     if (std::abs(b[0]) <= noise) add(interval.lo);
-    if (std::abs(b[kPolyDegree]) <= noise) add(interval.hi);
+    if (std::abs(b[N]) <= noise) add(interval.hi);
     const int changes = signChanges(b);
     if (changes == 0) {
       double smallest = std::abs(b[0]);
       for (const double x : b) smallest = std::min(smallest, std::abs(x));
       if (smallest > noise) continue;  // |p| > noise on the interval: no root
     }
-    if (changes == 1 && std::abs(b[0]) > noise && std::abs(b[kPolyDegree]) > noise) {
+    if (changes == 1 && std::abs(b[0]) > noise && std::abs(b[N]) > noise) {
       // The ends differ in sign, each clearly.
-      rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
+      rootIfSignChange(interval.lo, interval.hi, b[0], b[N]);
       continue;
     }
-    std::array<double, kPolyDegree> derivative;  // p' in the Bernstein basis, up to a factor
-    for (int i = 0; i < kPolyDegree; ++i) derivative[i] = b[i + 1] - b[i];
+    std::array<double, N> derivative;  // p' in the Bernstein basis, up to a factor
+    for (int i = 0; i < N; ++i) derivative[i] = b[i + 1] - b[i];
     int derivative_changes = 0;
     double last = 0.0;
     for (const double x : derivative) {
@@ -316,20 +327,20 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
       last = x;
     }
     if (derivative_changes == 0) {  // p monotone: a root iff it changes sign
-      rootIfSignChange(interval.lo, interval.hi, b[0], b[kPolyDegree]);
+      rootIfSignChange(interval.lo, interval.hi, b[0], b[N]);
       continue;
     }
     // The extremum's bracket needs the derivative's signs at both ends clear
     // of the noise too: next to a double root at an end, p' is at rounding
     // level there, and a bracket from its sign finds that end again.
     if (derivative_changes == 1 && std::abs(derivative[0]) > noise &&
-        std::abs(derivative[kPolyDegree - 1]) > noise) {
-      const double extremum = rootInBracket(dp.data(), ddp.data(), kPolyDegree - 1, interval.lo,
+        std::abs(derivative[N - 1]) > noise) {
+      const double extremum = rootInBracket(dp.data(), ddp.data(), N - 1, interval.lo,
                                             interval.hi, derivative[0]);
       add(extremum);
-      const double p_extremum = evaluate(p.data(), kPolyDegree, extremum);
+      const double p_extremum = evaluate(p.data(), N, extremum);
       rootIfSignChange(interval.lo, extremum, b[0], p_extremum);
-      rootIfSignChange(extremum, interval.hi, p_extremum, b[kPolyDegree]);
+      rootIfSignChange(extremum, interval.hi, p_extremum, b[N]);
       continue;
     }
     if (interval.depth >= kMaxSubdivisions || size + 2 > int(stack.size())) {
@@ -340,11 +351,11 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
     // entries of each level, the right half's the last.
     Interval left{{}, interval.lo, mid, interval.depth + 1};
     Interval right{{}, mid, interval.hi, interval.depth + 1};
-    Bernstein level = b;
-    for (int r = 0; r <= kPolyDegree; ++r) {
+    Bernstein<N> level = b;
+    for (int r = 0; r <= N; ++r) {
       left.b[r] = level[0];
-      right.b[kPolyDegree - r] = level[kPolyDegree - r];
-      for (int i = 0; i < kPolyDegree - r; ++i) level[i] = 0.5 * (level[i] + level[i + 1]);
+      right.b[N - r] = level[N - r];
+      for (int i = 0; i < N - r; ++i) level[i] = 0.5 * (level[i] + level[i + 1]);
     }
     stack[size++] = right;
     stack[size++] = left;
@@ -354,12 +365,14 @@ inline int rootsOnChart(const Polynomial& p, double noise, double* out) {
 
 /// Calls visit(cos theta, sin theta) for every real root theta of f on the
 /// circle and every candidate for a double root (see rootsOnChart), given the
-/// rounding level `noise` of f's values (|f| within it may be 0).
-template <typename Visit>
+/// rounding level `noise` of f's values (|f| within it may be 0). f's
+/// coefficients above `Degree` are taken as 0.
+template <int Degree = kTrigDegree, typename Visit>
 void forEachRootAngle(const TrigPolynomial& f, double noise, Visit&& visit) {
+  static_assert(Degree >= 1 && Degree <= kTrigDegree, "a trigonometric degree of 1..4");
   for (const bool shifted : {false, true}) {
     std::array<double, kMaxChartCandidates> ts;
-    const int num = rootsOnChart(onChart(f, shifted), noise, ts.data());
+    const int num = rootsOnChart<2 * Degree>(onChart<Degree>(f, shifted), noise, ts.data());
     const double sign = shifted ? -1.0 : 1.0;
     for (int i = 0; i < num; ++i) {
       const double t = ts[i], denominator = 1.0 + t * t;

@@ -58,7 +58,7 @@ inline void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const 
   E.C[2] = disk.r * e_u * e_v;
   E.S[2] = 0.5 * disk.r * (e_v * e_v - e_u * e_u);
   const double size = d.norm() + disk.r;  // bounds |E|'s terms
-  forEachRootAngle(E, kBernsteinNoise * size, [&](double cos_theta, double sin_theta) {
+  forEachRootAngle<2>(E, kBernsteinNoise * size, [&](double cos_theta, double sin_theta) {
     const Vec3 b = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
     directions->push_back((b - s) - (b - s).dot(e) * e);  // b - x
     directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
