@@ -92,8 +92,11 @@ DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>&
 /// input: false). Decision tolerance: closer than 1e-13 * scale counts as touching.
 ///
 /// Contact convention (FCL's for fcl::Contact, the disk as object 1): `pos` is a
-/// point of both shapes; `normal` is a unit vector from the disk towards the
-/// shape, and translating the shape by penetration_depth * normal separates them:
+/// point of both shapes (for an overlap the iteration left open and the
+/// penetration candidates decided, see diskShapeDistance, the midpoint of its
+/// nearest points, within half its residual of each); `normal` is a unit
+/// vector from the disk towards the shape, and translating the shape by
+/// penetration_depth * normal separates them:
 /// the smallest such translation among the disk's normal and the shape's own
 /// candidate directions (docs/disk_shape_distance.md section 5). It is an upper
 /// bound on the penetration depth, exact for every shape but the Ellipsoid
