@@ -10,6 +10,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
+#include <optional>
 
 #include "disk_shape_solver.h"
 #include "fcl_disk/disk_shape_distance.h"
@@ -158,14 +159,17 @@ struct GenericDiskShapePair {
   /// Whether the solver left the overlap open (not within touching, not proven
   /// apart: a grazing overlap it stalled next to) and the shape's candidates,
   /// whose shortest separation is the penetration depth, find the sets
-  /// overlapping by more than kOpenOverlapDepth * scale.
+  /// overlapping by more than kOpenOverlapDepth * scale; `separation` keeps
+  /// what the candidates found, when they were asked.
   template <typename Target>
   static bool overlapLeftOpen(const Target& target, const DiskInShape& disk, double rho,
-                              const DiskShapeSolution& solution, double scale) {
+                              const DiskShapeSolution& solution, double scale,
+                              std::optional<Separation>* separation) {
     if constexpr (kExactDiskShapePenetration<Shape>) {
       const double touching = kShapeTouchingTolerance * scale;
-      return solution.distance > touching && !(solution.lower_bound > touching) &&
-             shortestSeparation(target, disk, rho).depth > kOpenOverlapDepth * scale;
+      if (!(solution.distance > touching && !(solution.lower_bound > touching))) return false;
+      *separation = shortestSeparation(target, disk, rho);
+      return (*separation)->depth > kOpenOverlapDepth * scale;
     }
     return false;
   }
@@ -180,7 +184,8 @@ struct GenericDiskShapePair {
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     DiskShapeSolution solution = solveDiskShape(target, disk, rho, scale, SolverGoal::distance);
-    if (overlapLeftOpen(target, disk, rho, solution, scale)) {
+    std::optional<Separation> separation;
+    if (overlapLeftOpen(target, disk, rho, solution, scale, &separation)) {
       // Overlap: distance 0 at the solver's point, whose distance to the
       // shape is the solver's residual.
       solution.q = solution.p;
@@ -199,15 +204,16 @@ struct GenericDiskShapePair {
     const DiskShapeSolution solution =
         solveDiskShape(target, disk, rho, scale, SolverGoal::intersection);
     const double touching = kShapeTouchingTolerance * scale;
+    std::optional<Separation> separation;
     if (!(solution.distance <= touching) &&
-        !overlapLeftOpen(target, disk, rho, solution, scale)) {
+        !overlapLeftOpen(target, disk, rho, solution, scale, &separation)) {
       return false;
     }
     if (contact) {
       // pos: the common point, or midway between the solver's nearest points
-      // of an overlap it left open.
-      *contact = contactInWorld<S>(X_WS, 0.5 * (solution.p + solution.q),
-                                   shortestSeparation(target, disk, rho));
+      // of an overlap it left open (whose separation is already known).
+      if (!separation) separation = shortestSeparation(target, disk, rho);
+      *contact = contactInWorld<S>(X_WS, 0.5 * (solution.p + solution.q), *separation);
     }
     return true;
   }

@@ -166,18 +166,25 @@ TYPED_TEST(DiskShapePenetration, ConvexMatchesReference) {
   checkShape<TypeParam, fcl::Convex<TypeParam>>("convex", 18, kSearchedPoses);
 }
 
+/// The pose with these three rows of its 3x4 matrix [R | t].
+template <typename S>
+fcl::Transform3<S> poseFromRows(std::initializer_list<S> rows) {
+  fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+  const std::vector<S> m(rows);
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) X.linear()(i, j) = m[4 * i + j];
+    X.translation()[i] = m[4 * i + 3];
+  }
+  return X;
+}
+
 /// A cone whose base rim grazes through the disk by 4e-6 of the scene: the
 /// generic solver stalls 5e-13 from the cone without proving either answer,
 /// and the cone's penetration candidates decide the overlap.
 TEST(DiskShapePenetration, GrazingOverlapTheSolverLeavesOpen) {
+  // The rows are a float rotation's: orthonormal to double precision again.
   const auto pose = [](std::initializer_list<double> rows) {
-    fcl::Transform3d X = fcl::Transform3d::Identity();
-    const std::vector<double> m(rows);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) X.linear()(i, j) = m[4 * i + j];
-      X.translation()[i] = m[4 * i + 3];
-    }
-    // The rows are a float rotation's: orthonormal to double precision again.
+    fcl::Transform3d X = poseFromRows<double>(rows);
     X.linear() = Eigen::Quaterniond(X.linear()).normalized().toRotationMatrix();
     return X;
   };
@@ -208,15 +215,7 @@ TEST(DiskShapePenetration, GrazingOverlapTheSolverLeavesOpen) {
 /// the corner, which the edge lines' candidates e x t bound (b - x alone, at a
 /// rim point this near the line, reported 1.0e-7).
 TEST(DiskShapePenetration, CornerOnTheRimFoundByFuzzing) {
-  const auto pose = [](std::initializer_list<float> rows) {
-    fcl::Transform3f X = fcl::Transform3f::Identity();
-    const std::vector<float> m(rows);
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) X.linear()(i, j) = m[4 * i + j];
-      X.translation()[i] = m[4 * i + 3];
-    }
-    return X;
-  };
+  const auto pose = poseFromRows<float>;
   const float r = 0.00013698112161364406f;
   const fcl::Transform3f X_WD =
       pose({0.562236487865448f, -0.44838684797286987f, -0.69486641883850098f, 0.0f,
