@@ -3,7 +3,11 @@
 // fcl::distance / fcl::collide, float and double, against the long-double
 // reference of reference_shape_penetration.h (written from the geometry, not from
 // the solver's code: closed forms for the sphere, halfspace and plane, a search
-// over the sphere of directions for the others).
+// over the sphere of directions for the others). On every intersecting pose:
+// witnesses on the disk with p1 - p2 = depth * direction, the same depth after a
+// common rigid motion, separation one step past the depth and none one step
+// short, both argument orders and solvers through fcl::distance, fcl::collide's
+// depth and normal.
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <fcl_disk/fcl_disk.h>
@@ -46,12 +50,15 @@ constexpr double kPathStepRelative = 1e-3;
 constexpr int kPosesPerShape = 30000;
 /// The searched references take ~1 ms a pose: fewer poses.
 constexpr int kSearchedPoses = 1500;
+/// The common rigid motions are drawn from a stream of their own (this seed offset).
+constexpr std::uint64_t kMotionSeedOffset = 1000;
 
 
 template <typename S, typename Shape>
 void checkShape(const char* name, std::uint64_t seed, int poses = kPosesPerShape) {
   SCOPED_TRACE(name);
   Random rng(seed);
+  Random motion_rng(seed + kMotionSeedOffset);  // its own stream: the poses stay as they are
   int intersecting = 0;
   double worst = 0;
   for (int i = 0; i < poses; ++i) {
@@ -82,6 +89,14 @@ void checkShape(const char* name, std::uint64_t seed, int poses = kPosesPerShape
     EXPECT_LE((p1 - p2 - depth * w).norm(), tolerance) << trace();
     const Pose disk = diskOf(r, X_WD);
     EXPECT_LE(double(pointDiskDistance(toReal(p1), disk.c, disk.n, disk.r)), tolerance) << trace();
+    // A common rigid motion (within the unit ball: the scale grows by at most
+    // 1) moves nothing but the frame: the same depth.
+    const fcl::Transform3d motion = randomPose<double>(motion_rng, 1.0);
+    const auto moved_answer = fcl_disk::signedDiskShapeDistance(
+        r, fcl::Transform3<S>((motion * X_WD.template cast<double>()).template cast<S>()), shape,
+        fcl::Transform3<S>((motion * X_WS.template cast<double>()).template cast<S>()));
+    EXPECT_NEAR(-double(moved_answer.signed_distance), depth, kDepthRelative<S> * (scale + 1.0))
+        << trace() << " (after a common rigid motion)";
     // Moving the shape by depth + step along the direction separates; by
     // depth - step it does not.
     const double step = kSeparationStepRelative * scale;
