@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -42,11 +43,12 @@ struct ConvexGeometry {
   std::vector<ConvexFace> faces;
   /// Per face: its triangle projection when it is a triangle (most hulls).
   std::vector<TriangleProjection> triangles;
-  /// The face planes again, one array per coordinate, so that the height scan
-  /// of every projection runs vectorised: n_x, n_y, n_z, offset.
-  std::array<std::vector<double>, 4> planes;
-  /// The edges of the faces, each once (vertex indices, the smaller first).
-  std::vector<std::array<int, 2>> edges;
+  /// The face planes again, one column per coordinate (n_x, n_y, n_z, offset),
+  /// so that the height scan of every projection runs vectorised.
+  Eigen::Matrix<double, Eigen::Dynamic, 4> planes;
+  /// The vertices in double, one column per coordinate: the support's scan
+  /// runs vectorised.
+  Eigen::Matrix<double, Eigen::Dynamic, 3> points;
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
@@ -76,8 +78,8 @@ struct ConvexTarget {
   const int* list;                   ///< FCL's face list
   const std::vector<ConvexFace>& faces;
   const std::vector<TriangleProjection>& triangles;
-  const std::array<std::vector<double>, 4>& planes;
-  const std::vector<std::array<int, 2>>& edges;
+  const Eigen::Matrix<double, Eigen::Dynamic, 4>& planes;
+  const Eigen::Matrix<double, Eigen::Dynamic, 3>& points;
   int largest_face;
   bool flat;
 
@@ -87,7 +89,7 @@ struct ConvexTarget {
         faces(geometry.faces),
         triangles(geometry.triangles),
         planes(geometry.planes),
-        edges(geometry.edges),
+        points(geometry.points),
         largest_face(geometry.largest_face),
         flat(geometry.flat) {}
 
@@ -139,8 +141,11 @@ struct ConvexTarget {
     geometry.valid = listsAreValid(shape);
     if (!geometry.valid) return geometry;
     const auto vertex = [&](int index) { return shape.getVertices()[index].template cast<double>(); };
-    for (const auto& v : shape.getVertices()) {
-      geometry.bounding_radius = std::max(geometry.bounding_radius, safeNorm(v.template cast<double>()));
+    geometry.points.resize(Eigen::Index(shape.getVertices().size()), 3);
+    for (std::size_t i = 0; i < shape.getVertices().size(); ++i) {
+      const Vec3 v = vertex(int(i));
+      geometry.points.row(Eigen::Index(i)) = v.transpose();
+      geometry.bounding_radius = std::max(geometry.bounding_radius, safeNorm(v));
     }
     const std::vector<int>& list = shape.getFaces();
     std::vector<ConvexFace>& faces = geometry.faces;
@@ -148,7 +153,7 @@ struct ConvexTarget {
     bool& flat = geometry.flat;
     faces.reserve(shape.getFaceCount());
     geometry.triangles.resize(shape.getFaceCount());
-    for (auto& coordinate : geometry.planes) coordinate.reserve(shape.getFaceCount());
+    geometry.planes.resize(shape.getFaceCount(), 4);
     std::size_t at = 0;
     double largest_area = -1.0;
     Vec3 first_normal = Vec3::Zero();
@@ -180,18 +185,34 @@ struct ConvexTarget {
       double radius = 0.0;
       for (int i = 0; i < count; ++i) radius = std::max(radius, safeNorm(vertex(index[i]) - centre));
       faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre, radius});
-      for (int k = 0; k < 3; ++k) geometry.planes[k].push_back(unit[k]);
-      geometry.planes[3].push_back(faces.back().offset);
+      geometry.planes.row(f) << unit.transpose(), faces.back().offset;
+      at += count + 1;
+    }
+    return geometry;
+  }
+
+  /// The edges of the faces, each once (vertex indices, the smaller first):
+  /// only the penetration candidates need them, so they are not part of the
+  /// per-hull geometry every distance query pays for.
+  static std::vector<std::array<int, 2>> edgesOf(const fcl::Convex<S>& shape) {
+    std::vector<std::uint64_t> keys;
+    const std::vector<int>& list = shape.getFaces();
+    std::size_t at = 0;
+    for (int f = 0; f < shape.getFaceCount(); ++f) {
+      const int count = list[at];
       for (int i = 0; i < count; ++i) {
-        const int from = index[i], to = index[(i + 1) % count];
-        geometry.edges.push_back({std::min(from, to), std::max(from, to)});
+        const auto from = std::uint32_t(list[at + 1 + i]);
+        const auto to = std::uint32_t(list[at + 1 + (i + 1) % count]);
+        keys.push_back(std::uint64_t(std::min(from, to)) << 32 | std::max(from, to));
       }
       at += count + 1;
     }
-    std::sort(geometry.edges.begin(), geometry.edges.end());
-    geometry.edges.erase(std::unique(geometry.edges.begin(), geometry.edges.end()),
-                         geometry.edges.end());
-    return geometry;
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    std::vector<std::array<int, 2>> edges;
+    edges.reserve(keys.size());
+    for (const std::uint64_t key : keys) edges.push_back({int(key >> 32), int(key & 0xffffffffu)});
+    return edges;
   }
 
   /// Vertices finite and in range; faces well encoded (at least three in-range
@@ -229,23 +250,15 @@ struct ConvexTarget {
   /// face whose plane is farthest first (usually the answer: y's foot on it lies
   /// inside it), then the others whose plane distance can still beat the best.
   Projection project(const Vec3& y) const {
-    // Every plane's height of y, in one vectorised pass over the plane arrays.
-    thread_local std::vector<double> heights;
+    // Every plane's height of y, in one vectorised pass over the plane columns.
+    thread_local Eigen::VectorXd heights;
     const std::size_t face_count = faces.size();
-    heights.resize(face_count);
-    const double* n_x = planes[0].data();
-    const double* n_y = planes[1].data();
-    const double* n_z = planes[2].data();
-    const double* offset = planes[3].data();
-    double* height_of = heights.data();
-    for (std::size_t f = 0; f < face_count; ++f) {
-      height_of[f] = n_x[f] * y.x() + n_y[f] * y.y() + n_z[f] * y.z() - offset[f];
-    }
-    int farthest = -1;
-    double farthest_height = 0.0;
-    for (std::size_t f = 0; f < face_count; ++f) {
-      if (height_of[f] > farthest_height) farthest_height = height_of[f], farthest = int(f);
-    }
+    heights.noalias() = planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
+                        planes.col(3);
+    const double* height_of = heights.data();
+    Eigen::Index farthest_index = 0;
+    const double farthest_height = heights.maxCoeff(&farthest_index);
+    const int farthest = farthest_height > 0.0 ? int(farthest_index) : -1;
     if (farthest < 0) {
       // Inside every face plane: inside the solid, or on a flat polytope's plane,
       // where its largest face (the polygon) decides; when every face has zero
@@ -266,6 +279,12 @@ struct ConvexTarget {
     double best_distance = (y - best.q).norm();
     // The farthest plane's distance bounds the polytope's: reached, it is optimal.
     if (best_distance <= farthest_height) return best;
+    // q is the polytope's point nearest y iff no vertex lies beyond q along
+    // y - q (the optimality condition (y - q).(v - q) <= 0 for every point v of
+    // the hull, checked at its vertices): mostly q is on the farthest face's
+    // boundary and this one support scan settles it.
+    const Vec3 away = y - best.q;
+    if (supportValue(away) <= away.dot(best.q)) return best;
     for (std::size_t f = 0; f < face_count; ++f) {
       if (int(f) == farthest) continue;
       const double height = height_of[f];
@@ -279,16 +298,19 @@ struct ConvexTarget {
     return best;
   }
 
-  Vec3 support(const Vec3& w_S) const {
-    const auto& vertices = convex->getVertices();
-    std::size_t best = 0;  // ties take the first vertex
-    for (std::size_t i = 1; i < vertices.size(); ++i) {
-      if (w_S.dot(vertices[i].template cast<double>()) >
-          w_S.dot(vertices[best].template cast<double>())) {
-        best = i;
-      }
-    }
-    return vertices[best].template cast<double>();
+  /// max over the vertices of w.v.
+  double supportValue(const Vec3& w) const {
+    thread_local Eigen::VectorXd along;
+    along.noalias() = points.col(0) * w.x() + points.col(1) * w.y() + points.col(2) * w.z();
+    return along.maxCoeff();
+  }
+
+  Vec3 support(const Vec3& w) const {
+    thread_local Eigen::VectorXd along;
+    along.noalias() = points.col(0) * w.x() + points.col(1) * w.y() + points.col(2) * w.z();
+    Eigen::Index best = 0;  // ties take the first vertex
+    along.maxCoeff(&best);
+    return points.row(best).transpose();
   }
 
   /// The faces of nonzero area, for the nearly-parallel candidates.
@@ -324,12 +346,13 @@ struct ConvexTraits {
                                              const DiskInShape& disk) {
     const auto& vertices = target.convex->getVertices();
     std::vector<Vec3> directions;
-    directions.reserve(target.faces.size() + 2 * vertices.size() + 4 * target.edges.size());
+    const std::vector<std::array<int, 2>> edges = ConvexTarget<S>::edgesOf(*target.convex);
+    directions.reserve(target.faces.size() + 2 * vertices.size() + 4 * edges.size());
     for (const ConvexFace& face : target.faces) directions.push_back(face.unit_normal);
     for (const auto& vertex : vertices) {
       addVertexCandidates(disk, vertex.template cast<double>(), &directions);
     }
-    for (const auto& edge : target.edges) {
+    for (const auto& edge : edges) {
       const Vec3 from = vertices[edge[0]].template cast<double>();
       const Vec3 along = vertices[edge[1]].template cast<double>() - from;
       const double length = ConvexTarget<S>::safeNorm(along);
