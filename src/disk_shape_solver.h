@@ -141,6 +141,16 @@ constexpr double kShapeGradientRounding = 8 * std::numeric_limits<double>::epsil
 /// less than the share of a Newton iteration it saves on random pairs; a third
 /// saved less than it cost (docs/disk_shape_distance.md, section 3).
 constexpr int kStartProjections = 2;
+/// The distance goal evaluates the certificate once the step expects to
+/// shorten the distance by less than this many gap tolerances: before that the
+/// iterate is not optimal to the tolerance and the certificate would only cost
+/// its support evaluations. The expectation is Newton's, exact only where psi
+/// is smooth: the margin keeps the certificate where a kink ahead makes the
+/// model overstate the gain.
+constexpr double kShapeCertifyGain = 100.0;
+/// The model step's predicted psi below this fraction of psi: the model
+/// reaches X (its minimum is 0 up to the step's rounding).
+constexpr double kShapeModelReachesX = 1e-8;
 /// Iteration cap. Converged pairs need 1-6 (Newton on a piecewise quadratic or
 /// smooth psi); the cap only bounds the work on flat, degenerate optima, whose
 /// answer the certificate then qualifies.
@@ -775,52 +785,87 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     return certificateAt(target, disk, rho, at, distance, gap_tolerance, scale, returned);
   };
 
+  const double certify_below = kShapeCertifyGain * gap_tolerance;
   for (int iteration = 1; iteration <= kMaxShapeIterations; ++iteration) {
     const double core_distance = std::sqrt(2.0 * at.psi);
     if (core_distance <= rho) return finish(iteration, 0.0);
     const double distance = core_distance - rho;
-    const double lower = certify(distance, /*returned=*/false);
-    if (goal == SolverGoal::intersection) {
-      if (distance <= touching || lower > touching) return finish(iteration, lower);
-    }
-    if (distance - lower <= gap_tolerance) return finish(iteration, lower);
 
-    // The step: Newton along the rim when the point is on it with a
+    // The proposed step: Newton along the rim when the point is on it with a
     // non-negative multiplier, else the disk-constrained model step.
     const Vec2 s = at.s;
     const double radius = s.norm();
     const bool near_rim = radius >= r * (1.0 - kShapeOnRim) && radius > 0.0;
-    bool moved = false;
-    ShapeIterate next;
+    bool rim_step = false;
+    Vec2 radial, tangent;
+    double dtheta = 0.0, sigma = 0.0;
     if (near_rim) {
-      const Vec2 radial = s / radius;
-      const Vec2 tangent(-radial.y(), radial.x());
+      radial = s / radius;
+      tangent = Vec2(-radial.y(), radial.x());
       const double outward = -at.gradient.dot(radial);
-      const bool on_rim =
+      rim_step =
           outward >= 0.0 || outward * outward <= kShapeInwardGradient * kShapeInwardGradient *
-                                                      at.gradient.squaredNorm();
-      if (on_rim) {
+                                                     at.gradient.squaredNorm();
+      if (rim_step) {
         // psi(theta)' = r sigma, psi'' = r kappa (lengths): dtheta = -sigma / kappa.
-        const double sigma = at.gradient.dot(tangent);
+        sigma = at.gradient.dot(tangent);
         const Vec3 tangent3 = tangent.x() * disk.u + tangent.y() * disk.v;
         const double kappa = r * at.hessian3.quadratic(tangent3) + std::max(outward, 0.0);
-        double dtheta = kappa > 0.0 ? -sigma / kappa : -std::copysign(kShapeMaxRimStep, sigma);
+        dtheta = kappa > 0.0 ? -sigma / kappa : -std::copysign(kShapeMaxRimStep, sigma);
         dtheta = std::clamp(dtheta, -kShapeMaxRimStep, kShapeMaxRimStep);
-        for (int halving = 0; halving < kShapeMaxRimHalvings && !moved; ++halving) {
-          const Vec2 rotation = cayleyTurn(dtheta);
-          next = evaluateAt(target, disk, r * (rotation.x() * radial + rotation.y() * tangent));
-          moved = next.psi < at.psi;
-          dtheta *= 0.5;
-        }
       }
     }
+    Vec2 step = Vec2::Zero();
+    Mat2 planar_hessian;
+    auto model_step = [&] {
+      planar_hessian = planarHessian(at.hessian3, disk);
+      step = modelStepOnDisk(planar_hessian, at.gradient, s, r, kShapeGradientRounding * scale);
+    };
+    if (!rim_step) model_step();
+    // What the step expects to gain, in distance (psi = d^2 / 2): Newton's
+    // decrease r sigma^2 / (2 kappa) along the rim, the model's otherwise.
+    const double expected_decrease =
+        (rim_step ? 0.5 * r * std::abs(sigma * dtheta)
+                  : -(at.gradient.dot(step) + 0.5 * step.dot(planar_hessian * step))) /
+        core_distance;
+
+    // The certificate, where it can close: for the distance goal once the step
+    // expects to gain little more than the gap tolerance (the gap is at least
+    // what is left to gain), for the intersection goal at every iterate (a
+    // positive bound proves the pair apart however far from optimal).
+    if (goal == SolverGoal::intersection || expected_decrease <= certify_below) {
+      const double lower = certify(distance, /*returned=*/false);
+      if (goal == SolverGoal::intersection) {
+        if (distance <= touching || lower > touching) return finish(iteration, lower);
+      }
+      if (distance - lower <= gap_tolerance) return finish(iteration, lower);
+    }
+
+    bool moved = false;
+    ShapeIterate next;
+    for (int halving = 0; rim_step && halving < kShapeMaxRimHalvings && !moved; ++halving) {
+      const Vec2 rotation = cayleyTurn(dtheta);
+      next = evaluateAt(target, disk, r * (rotation.x() * radial + rotation.y() * tangent));
+      moved = next.psi < at.psi;
+      dtheta *= 0.5;
+    }
     if (!moved) {
-      const Vec2 step = modelStepOnDisk(planarHessian(at.hessian3, disk), at.gradient, s, r,
-                                        kShapeGradientRounding * scale);
+      if (rim_step) model_step();
       const double slope = at.gradient.dot(step);
       if (!(slope < 0.0)) return finish(iteration, certify(distance, true));  // stationary
-      shapeLineSearch(target, disk, at, step, slope, &next);
-      moved = next.psi < at.psi;
+      // The model reaching psi = 0 means the step ends on X's boundary, where
+      // psi is 0 only to rounding: twice the step, when it stays on the disk,
+      // is usually inside X, an overlap proven one iteration sooner.
+      const double model_psi = at.psi + slope + 0.5 * step.dot(planar_hessian * step);
+      if (rho == 0.0 && model_psi <= kShapeModelReachesX * at.psi &&
+          (s + 2.0 * step).squaredNorm() <= r * r) {
+        next = evaluateAt(target, disk, s + 2.0 * step);
+        moved = next.psi == 0.0;
+      }
+      if (!moved) {
+        shapeLineSearch(target, disk, at, step, slope, &next);
+        moved = next.psi < at.psi;
+      }
     }
     if (!moved) return finish(iteration, certify(distance, true));  // no representable decrease
     const double decrease = at.psi - next.psi;
