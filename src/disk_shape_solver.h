@@ -790,6 +790,20 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     const double core_distance = std::sqrt(2.0 * at.psi);
     if (core_distance <= rho) return finish(iteration, 0.0);
     const double distance = core_distance - rho;
+    // The certificate at this iterate, and whether it ends the iteration.
+    double lower = 0.0;
+    bool certified = false;
+    auto certificate_closes = [&] {
+      lower = certify(distance, /*returned=*/false);
+      certified = true;
+      if (goal == SolverGoal::intersection && (distance <= touching || lower > touching)) {
+        return true;
+      }
+      return distance - lower <= gap_tolerance;
+    };
+    // For the intersection goal at every iterate: a positive bound proves the
+    // pair apart however far from optimal.
+    if (goal == SolverGoal::intersection && certificate_closes()) return finish(iteration, lower);
 
     // The proposed step: Newton along the rim when the point is on it with a
     // non-negative multiplier, else the disk-constrained model step.
@@ -798,7 +812,7 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     const bool near_rim = radius >= r * (1.0 - kShapeOnRim) && radius > 0.0;
     bool rim_step = false;
     Vec2 radial, tangent;
-    double dtheta = 0.0, sigma = 0.0;
+    double sigma = 0.0, kappa = 0.0;
     if (near_rim) {
       radial = s / radius;
       tangent = Vec2(-radial.y(), radial.x());
@@ -807,12 +821,10 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
           outward >= 0.0 || outward * outward <= kShapeInwardGradient * kShapeInwardGradient *
                                                      at.gradient.squaredNorm();
       if (rim_step) {
-        // psi(theta)' = r sigma, psi'' = r kappa (lengths): dtheta = -sigma / kappa.
+        // psi(theta)' = r sigma, psi'' = r kappa (lengths).
         sigma = at.gradient.dot(tangent);
         const Vec3 tangent3 = tangent.x() * disk.u + tangent.y() * disk.v;
-        const double kappa = r * at.hessian3.quadratic(tangent3) + std::max(outward, 0.0);
-        dtheta = kappa > 0.0 ? -sigma / kappa : -std::copysign(kShapeMaxRimStep, sigma);
-        dtheta = std::clamp(dtheta, -kShapeMaxRimStep, kShapeMaxRimStep);
+        kappa = r * at.hessian3.quadratic(tangent3) + std::max(outward, 0.0);
       }
     }
     Vec2 step = Vec2::Zero();
@@ -823,23 +835,20 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     };
     if (!rim_step) model_step();
     // What the step expects to gain, in distance (psi = d^2 / 2): Newton's
-    // decrease r sigma^2 / (2 kappa) along the rim, the model's otherwise.
+    // decrease of psi, r sigma^2 / (2 kappa) along the rim, the model's
+    // otherwise. Once that is little more than the gap tolerance (the gap is at
+    // least what is left to gain) the certificate may close.
     const double expected_decrease =
-        (rim_step ? 0.5 * r * std::abs(sigma * dtheta)
-                  : -(at.gradient.dot(step) + 0.5 * step.dot(planar_hessian * step))) /
-        core_distance;
-
-    // The certificate, where it can close: for the distance goal once the step
-    // expects to gain little more than the gap tolerance (the gap is at least
-    // what is left to gain), for the intersection goal at every iterate (a
-    // positive bound proves the pair apart however far from optimal).
-    if (goal == SolverGoal::intersection || expected_decrease <= certify_below) {
-      const double lower = certify(distance, /*returned=*/false);
-      if (goal == SolverGoal::intersection) {
-        if (distance <= touching || lower > touching) return finish(iteration, lower);
-      }
-      if (distance - lower <= gap_tolerance) return finish(iteration, lower);
+        rim_step ? (kappa > 0.0 ? (0.5 * r * sigma * sigma) / (kappa * core_distance)
+                                : std::numeric_limits<double>::infinity())
+                 : -(at.gradient.dot(step) + 0.5 * step.dot(planar_hessian * step)) /
+                       core_distance;
+    if (!certified && expected_decrease <= certify_below && certificate_closes()) {
+      return finish(iteration, lower);
     }
+    // The rim step: dtheta = -sigma / kappa, at most kShapeMaxRimStep.
+    double dtheta = kappa > 0.0 ? -sigma / kappa : -std::copysign(kShapeMaxRimStep, sigma);
+    dtheta = std::clamp(dtheta, -kShapeMaxRimStep, kShapeMaxRimStep);
 
     bool moved = false;
     ShapeIterate next;
