@@ -13,6 +13,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <utility>
 
 namespace fcl_disk {
 namespace internal {
@@ -266,8 +267,13 @@ constexpr int kMaxChartCandidates = 2 * kMaxIntervals + 2 * kPolyDegree;
 ///   holds a root exactly when p changes sign over it.
 /// Undecided intervals are halved, down to kMaxSubdivisions (then the midpoint
 /// is the candidate), within a budget of kMaxIntervals.
-template <int N>
-int rootsOnChart(const Polynomial<N>& p, double noise, double* out) {
+/// Only intervals [lo, hi] for which may_hold(lo, hi) is true are examined
+/// (false: no wanted root lies there, whatever the coefficients say), and
+/// those wider than may_hold.split_wider_than are halved before they are
+/// decided, so that the test sees intervals small enough to rule out.
+template <int N, typename IntervalTest>
+int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
+                 const IntervalTest& may_hold) {
   Polynomial<N> dp{}, ddp{};
   for (int j = 0; j < N; ++j) dp[j] = (j + 1) * p[j + 1];
   for (int j = 0; j + 1 < N; ++j) ddp[j] = (j + 1) * dp[j + 1];
@@ -292,6 +298,20 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out) {
   };
   std::array<Interval, kMaxSubdivisions + 2> stack;
   int size = 0, examined = 0;
+  // de Casteljau at s = 1/2: the left half's coefficients are the first
+  // entries of each level, the right half's the last.
+  const auto halve = [&](const Interval& interval, double mid) {
+    Interval left{{}, interval.lo, mid, interval.depth + 1};
+    Interval right{{}, mid, interval.hi, interval.depth + 1};
+    Bernstein<N> level = interval.b;
+    for (int r = 0; r <= N; ++r) {
+      left.b[r] = level[0];
+      right.b[N - r] = level[N - r];
+      for (int i = 0; i < N - r; ++i) level[i] = 0.5 * (level[i] + level[i + 1]);
+    }
+    stack[size++] = right;
+    stack[size++] = left;
+  };
   stack[size++] = {toBernstein<N>(p), -1.0, 1.0, 0};
   while (size > 0) {
     const Interval interval = stack[--size];
@@ -300,18 +320,25 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out) {
       add(mid);
       continue;
     }
+    if (!may_hold(interval.lo, interval.hi)) continue;
     const Bernstein<N>& b = interval.b;
-    // An end within the noise of zero may be a root that does not change sign
-    // (a double root where a halving fell, as on the symmetry axis of a
-    // symmetric pair): a candidate, whatever the interior holds.
-    if (std::abs(b[0]) <= noise) add(interval.lo);
-    if (std::abs(b[N]) <= noise) add(interval.hi);
+    const bool split_for_test = interval.hi - interval.lo > may_hold.split_wider_than &&
+                                interval.depth < kMaxSubdivisions && size + 2 <= int(stack.size());
     const int changes = signChanges(b);
     if (changes == 0) {
       double smallest = std::abs(b[0]);
       for (const double x : b) smallest = std::min(smallest, std::abs(x));
       if (smallest > noise) continue;  // |p| > noise on the interval: no root
     }
+    if (split_for_test) {  // halved before it is decided: its halves may be ruled out
+      halve(interval, mid);
+      continue;
+    }
+    // An end within the noise of zero may be a root that does not change sign
+    // (a double root where a halving fell, as on the symmetry axis of a
+    // symmetric pair): a candidate, whatever the interior holds.
+    if (std::abs(b[0]) <= noise) add(interval.lo);
+    if (std::abs(b[N]) <= noise) add(interval.hi);
     if (changes == 1 && std::abs(b[0]) > noise && std::abs(b[N]) > noise) {
       // The ends differ in sign, each clearly.
       rootIfSignChange(interval.lo, interval.hi, b[0], b[N]);
@@ -347,20 +374,55 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out) {
       add(mid);
       continue;
     }
-    // de Casteljau at s = 1/2: the left half's coefficients are the first
-    // entries of each level, the right half's the last.
-    Interval left{{}, interval.lo, mid, interval.depth + 1};
-    Interval right{{}, mid, interval.hi, interval.depth + 1};
-    Bernstein<N> level = b;
-    for (int r = 0; r <= N; ++r) {
-      left.b[r] = level[0];
-      right.b[N - r] = level[N - r];
-      for (int i = 0; i < N - r; ++i) level[i] = 0.5 * (level[i] + level[i + 1]);
-    }
-    stack[size++] = right;
-    stack[size++] = left;
+    halve(interval, mid);
   }
   return count;
+}
+
+/// A test of arcs of the circle: `may_hold(cos, sin, radius)` false when no
+/// wanted root lies within `radius` (radians) of the angle (cos, sin); arcs
+/// wider than `split_wider_than` (radians) are halved for it before they are
+/// decided.
+struct AnyArc {
+  bool operator()(double, double, double) const { return true; }
+  static constexpr double split_wider_than = 2 * kPi;
+};
+
+/// forEachRootAngle below, visiting only the roots on arcs `may_hold` keeps.
+template <int Degree = kTrigDegree, typename Visit, typename ArcTest>
+void forEachRootAngle(const TrigPolynomial& f, double noise, Visit&& visit,
+                      const ArcTest& may_hold) {
+  static_assert(Degree >= 1 && Degree <= kTrigDegree, "a trigonometric degree of 1..4");
+  for (const bool shifted : {false, true}) {
+    std::array<double, kMaxChartCandidates> ts;
+    const double sign = shifted ? -1.0 : 1.0;
+    // The chart interval [lo, hi] of t as an arc: theta = 2 atan t moves by at
+    // most 2 |dt|, so the arc lies within hi - lo of theta(mid).
+    struct ChartTest {
+      const ArcTest& arcs;
+      double sign;
+      double split_wider_than;
+      bool operator()(double lo, double hi) const {
+        const double mid = 0.5 * (lo + hi), denominator = 1.0 + mid * mid;
+        return arcs(sign * (1.0 - mid * mid) / denominator, sign * 2.0 * mid / denominator,
+                    hi - lo);
+      }
+    };
+    const ChartTest chart_test{may_hold, sign, 0.5 * ArcTest::split_wider_than};
+    // A chart none of whose quarters may hold a root is skipped before its
+    // polynomial is formed.
+    bool any_quarter = false;
+    for (int quarter = 0; quarter < 4 && !any_quarter; ++quarter) {
+      any_quarter = chart_test(-1.0 + 0.5 * quarter, -0.5 + 0.5 * quarter);
+    }
+    if (!any_quarter) continue;
+    const int num =
+        rootsOnChart<2 * Degree>(onChart<Degree>(f, shifted), noise, ts.data(), chart_test);
+    for (int i = 0; i < num; ++i) {
+      const double t = ts[i], denominator = 1.0 + t * t;
+      visit(sign * (1.0 - t * t) / denominator, sign * 2.0 * t / denominator);
+    }
+  }
 }
 
 /// Calls visit(cos theta, sin theta) for every real root theta of f on the
@@ -369,16 +431,7 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out) {
 /// coefficients above `Degree` are taken as 0.
 template <int Degree = kTrigDegree, typename Visit>
 void forEachRootAngle(const TrigPolynomial& f, double noise, Visit&& visit) {
-  static_assert(Degree >= 1 && Degree <= kTrigDegree, "a trigonometric degree of 1..4");
-  for (const bool shifted : {false, true}) {
-    std::array<double, kMaxChartCandidates> ts;
-    const int num = rootsOnChart<2 * Degree>(onChart<Degree>(f, shifted), noise, ts.data());
-    const double sign = shifted ? -1.0 : 1.0;
-    for (int i = 0; i < num; ++i) {
-      const double t = ts[i], denominator = 1.0 + t * t;
-      visit(sign * (1.0 - t * t) / denominator, sign * 2.0 * t / denominator);
-    }
-  }
+  forEachRootAngle<Degree>(f, noise, std::forward<Visit>(visit), AnyArc());
 }
 
 }  // namespace trig_roots
