@@ -221,18 +221,29 @@ TYPED_TEST(disk_aabb, ExtentsMatchClosedFormsOnSimplePoses) {
 
 TYPED_TEST(disk_aabb, CoversTiltsThatFclTakesForTheIdentity) {
   using S = TypeParam;
-  // Below Eigen's isIdentity() precision (1e-5 float, 1e-12 double), where FCL's
-  // computeAABB() uses the untilted local box, flat in z.
-  const S tilt = std::is_same<S, float>::value ? S(1e-6) : S(1e-13);
-  const S r = S(1);
-  fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
-  X.linear() = Eigen::AngleAxis<S>(tilt, fcl::Vector3<S>::UnitX()).toRotationMatrix();
-  ASSERT_TRUE(X.linear().isIdentity());
-  const S rim_height = r * X.linear()(2, 1);  // the rim point r v has z = r v_z
-  ASSERT_GT(rim_height, S(0));
-  const fcl::CollisionObject<S> fcl_object(std::make_shared<fcl_disk::Disk<S>>(r), X);
-  EXPECT_LT(fcl_object.getAABB().max_[2], rim_height);  // FCL's box misses the rim
-  EXPECT_GE(diskWorldAABB(r, X).max_[2], rim_height);
+  // Below Eigen's isIdentity() precision p (1e-5 float, 1e-12 double), FCL's
+  // computeAABB() translates the Disk's local box as if untilted: the local box
+  // is padded so that it still holds the rim. The largest such tilt: about a
+  // diagonal axis of the plane, with both z entries of the rotation just under p.
+  const S p = Eigen::NumTraits<S>::dummy_precision();
+  for (const S tilt : {S(0.1) * p, S(0.99) * std::sqrt(S(2)) * p}) {
+    for (const S r : {S(1), S(1e6), S(1e-6)}) {
+      fcl::Transform3<S> X = fcl::Transform3<S>::Identity();
+      X.linear() =
+          Eigen::AngleAxis<S>(tilt, fcl::Vector3<S>(1, 1, 0).normalized()).toRotationMatrix();
+      X.translation() = fcl::Vector3<S>(S(0.25) * r, S(-0.5) * r, S(2) * r);
+      ASSERT_TRUE(X.linear().isIdentity());
+      const fcl::CollisionObject<S> fcl_object(std::make_shared<fcl_disk::Disk<S>>(r), X);
+      const fcl::AABB<S>& box = fcl_object.getAABB();
+      for (int k = 0; k < 64; ++k) {  // rim points
+        const S angle = S(2 * M_PI * k / 64);
+        const fcl::Vector3<S> rim =
+            X * fcl::Vector3<S>(r * std::cos(angle), r * std::sin(angle), S(0));
+        EXPECT_TRUE(box.contain(rim)) << "tilt " << tilt << " r " << r << " rim point " << k;
+      }
+      EXPECT_GE(diskWorldAABB(r, X).max_[2] - X.translation().z(), r * std::sin(tilt) * S(0.99));
+    }
+  }
 }
 
 TYPED_TEST(disk_aabb, CollisionObjectsStoreTheTightBoxWhereManagersReadIt) {

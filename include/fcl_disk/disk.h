@@ -9,6 +9,7 @@
 #include <fcl_disk/fcl_templates.h>
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -53,7 +54,32 @@ class Disk final : public fcl::Cylinder<S> {
     return X_WD.linear().col(2);
   }
 
+  /// FCL's local box [-r, r]^2 x {0}, padded by identityTiltPad() r on every
+  /// side. fcl::CollisionObject::computeAABB() takes any rotation Eigen's
+  /// isIdentity() accepts (entries within p = 1e-5 of I in float, 1e-12 in
+  /// double) as exactly I and translates this box; such a rotation moves the
+  /// disk's extent along x and y by at most p r and lifts its rim by at most
+  /// sqrt(2) p r, so the padded box still holds the disk (unpadded, a float
+  /// disk tilted by 1e-6 stuck out of its box and FCL's managers missed its
+  /// pairs). Elsewhere FCL uses the cube of half-width aabb_radius, which grows
+  /// with the pad.
+  void computeLocalAABB() override {
+    fcl::Cylinder<S>::computeLocalAABB();
+    const fcl::Vector3<S> pad = fcl::Vector3<S>::Constant(identityTiltPad() * this->radius);
+    this->aabb_local.min_ -= pad;
+    this->aabb_local.max_ += pad;
+    this->aabb_center = this->aabb_local.center();
+    this->aabb_radius = (this->aabb_local.min_ - this->aabb_center).norm();
+  }
+
  private:
+  /// The pad of the local box, relative to the radius: 2 p (p = Eigen's
+  /// dummy precision for S, isIdentity()'s default) plus rounding, which
+  /// covers the sqrt(2) p tilt and the p stretch of a rotation within p of I.
+  static S identityTiltPad() {
+    return S(2) * Eigen::NumTraits<S>::dummy_precision() + S(8) * std::numeric_limits<S>::epsilon();
+  }
+
   static S checkedRadius(S radius) {
     if (!isValidDiskRadius(radius)) {
       std::ostringstream message;

@@ -35,12 +35,11 @@ namespace fcl_disk {
 /// stored radius and pose), and exceeds the smallest such box, per face, by at most
 /// 2 * kDiskAabbExtentPadUlps * eps * extent_i + 2 ulp(|c_i| + extent_i) (eps, ulp
 /// of S): a few ulps, see kDiskAabbExtentPadUlps. FCL's own box is a cube of
-/// half-width sqrt(2) r (rounded to nearest), so this one lies inside it up to
-/// those ulps; except that FCL takes any rotation Eigen's isIdentity() accepts
-/// (entries within 1e-12 of I in double, 1e-5 in float) as exactly I and ignores
-/// the tilt, so its box may then miss disk points by up to ~1e-12 r (double) or
-/// ~1e-5 r (float) along the normal; this one does not. Non-finite input gives a
-/// non-finite box.
+/// half-width sqrt(2) r (1 + 2 p) (rounded to nearest), so this one lies inside
+/// it up to those ulps; for a rotation Eigen's isIdentity() accepts (entries
+/// within p = 1e-12 of I in double, 1e-5 in float) FCL translates the Disk's
+/// local box instead, padded by 2 p r so that it still holds the tilted disk
+/// (Disk::computeLocalAABB). Non-finite input gives a non-finite box.
 template <typename S>
 fcl::AABB<S> diskWorldAABB(S radius, const fcl::Transform3<S>& X_WD);
 
