@@ -254,35 +254,35 @@ Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Bes
 /// The rim-pair candidates of docs/penetration_depth.md section 2: the
 /// directions each root of Q gives (or, Q vanishing, kFixedAnglesWhenQVanishes
 /// angles), offered to `search`.
-/// Arcs of disk 2's rim where a critical rim pair can still beat `search`'s
-/// best F: at a minimiser off the kinks PD = |b - a| with b the nearest or
-/// farthest point of rim 1 to a (section 2), so PD >= dist(a, rim 1), and
-/// a(theta) moves at speed r2. An arc whose centre is farther from rim 1
-/// than the best F plus r2 times its radius (and kPrunedArcSlack) holds no
-/// minimiser when the disks share a point (PD >= 0, or -d with d within the
-/// touching tolerance, far below the slack) and the best is positive.
+/// Arcs of disk 2's rim where a critical rim pair can still beat `bound()`, an
+/// upper bound on PD plus a slack (infinite: every arc): at a minimiser off
+/// the kinks PD = |b - a| with b the nearest or farthest point of rim 1 to a
+/// (section 2), so PD >= dist(a, rim 1), and a(theta) moves at speed r2. An
+/// arc whose centre is farther from rim 1 than bound() plus r2 times its
+/// radius holds no minimiser. Valid when the minimiser's value is >= 0 (disks
+/// that share a point) or within the slack of it (touching).
 struct ArcsThatCanBeatBest {
   const PairInFrame1& pair;
-  const PenetrationSearch& search;
+  const std::function<double()>& bound;
   /// Arcs wider than this (radians) are halved before their roots are
   /// isolated, so that most of the circle is ruled out as a whole; on the
   /// report's families the arcs that can beat the best are ~10% of it.
-  static constexpr double split_wider_than = 0.5;
+  static constexpr double split_wider_than = internal::kPrunedArcWidth;
 
   bool operator()(double cos_theta, double sin_theta, double radius) const {
-    const double best = search.bestValue();
-    if (!(best > 0.0)) return true;
+    const double limit = bound();
+    if (!(limit < std::numeric_limits<double>::infinity())) return true;
     const Vec3 a = pair.c + pair.r2 * (cos_theta * pair.R.col(0) + sin_theta * pair.R.col(1));
     const double off_axis = std::sqrt(a.x() * a.x() + a.y() * a.y()) - pair.r1;
     const double from_rim1 = std::sqrt(off_axis * off_axis + a.z() * a.z());
-    return from_rim1 - pair.r2 * radius <= best + kPrunedArcSlack;
+    return from_rim1 - pair.r2 * radius <= limit;
   }
 };
 
-/// `prune`: only the roots that can beat the best found so far
-/// (ArcsThatCanBeatBest); otherwise every candidate is visited (the
-/// candidate set of a disk as a shape's flat end, whose F is the shape's).
-void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search, bool prune) {
+/// `bound`: only the roots that can beat it (ArcsThatCanBeatBest); nullptr:
+/// every candidate.
+void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
+                           const std::function<double()>* bound) {
   // Q(theta) = rho^2 L^2 - r1^2 K^2 along disk 2's rim a(theta) = c + r2 (cos u + sin v).
   const Vec3& c = pair.c;
   const Vec3 u = pair.R.col(0), v = pair.R.col(1);
@@ -320,8 +320,8 @@ void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search, 
   const auto visit = [&](double cos_theta, double sin_theta) {
     search.considerRimAngle(cos_theta, sin_theta);
   };
-  if (prune) {
-    forEachRootAngle(Q, kBernsteinNoise * terms, visit, ArcsThatCanBeatBest{pair, search});
+  if (bound) {
+    forEachRootAngle(Q, kBernsteinNoise * terms, visit, ArcsThatCanBeatBest{pair, *bound});
   } else {
     forEachRootAngle(Q, kBernsteinNoise * terms, visit);
   }
@@ -356,7 +356,11 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
 
   // Pruning needs disks that share a point (to the touching tolerance): apart,
   // min F = -d lies at a critical pair no distance to rim 1 bounds.
-  considerRimCandidates(pair, search, /*prune=*/internal::commonPoint(pair).has_value());
+  const std::function<double()> bound = [&search] {
+    const double best = search.bestValue();
+    return best > 0.0 ? best + kPrunedArcSlack : std::numeric_limits<double>::infinity();
+  };
+  considerRimCandidates(pair, search, internal::commonPoint(pair) ? &bound : nullptr);
   search.polishBestRimPair();
   return withWitnesses(pair, search.best());
 }
@@ -366,13 +370,14 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
 namespace internal {
 
 void forEachDiskPairPenetrationCandidate(const PairInFrame1& unit_pair,
-                                         const std::function<void(const Vec3&)>& visit) {
+                                         const std::function<void(const Vec3&)>& visit,
+                                         const std::function<double()>* bound) {
   PenetrationSearch search(unit_pair, &visit);
   const Vec3 n2 = unit_pair.R.col(0).cross(unit_pair.R.col(1)).normalized();
   for (const Vec3& kink : {Vec3(Vec3::UnitZ()), Vec3(-Vec3::UnitZ()), n2, Vec3(-n2)}) {
     search.consider(kink);
   }
-  considerRimCandidates(unit_pair, search, /*prune=*/false);
+  considerRimCandidates(unit_pair, search, bound);
 }
 
 }  // namespace internal

@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "disk_shape_solver.h"
 #include "fcl_disk/disk_shape_distance.h"
@@ -91,25 +92,70 @@ struct Separation {
 /// the candidates hold a minimiser of depth(w) over all w (the
 /// kExactDiskShapePenetration shapes), the depth is the penetration depth if
 /// the sets meet and minus their distance if not: its sign decides the overlap.
-template <typename Directions, typename DepthAlong>
-Separation shortestSeparation(const DiskInShape& disk, const Directions& shape_directions,
-                              DepthAlong depth_along) {
-  Separation best{std::numeric_limits<double>::infinity(), disk.n};
-  auto consider = [&](const Vec3& w) {
-    const double length = w.norm();
-    if (!(length > 0.0)) return;
-    const Vec3 unit = w / length;
-    const double depth = depth_along(unit);
-    if (depth < best.depth) best = Separation{depth, unit};
-  };
-  consider(disk.n);
-  consider(-disk.n);
-  for (const Vec3& w : shape_directions) {
+/// Candidates are pushed to it one by one (push_back(w): both signs), the
+/// disk's normals first. For a pair known to share a point (to the touching
+/// tolerance) a candidate generator may skip the directions that cannot beat
+/// pruningBound(), the best depth so far plus `prune_slack` (>= 0; negative:
+/// nothing is skipped); docs/penetration_depth.md, section 7.
+template <typename DepthAlong>
+class SeparationSearch {
+ public:
+  /// `inflation`: the rho of depth_along (X = core + B_rho), for the bounds.
+  SeparationSearch(const DiskInShape& disk, DepthAlong depth_along, double prune_slack,
+                   double inflation = 0.0)
+      : depth_along_(std::move(depth_along)),
+        prune_slack_(prune_slack),
+        inflation_(inflation),
+        best_{std::numeric_limits<double>::infinity(), disk.n} {
+    consider(disk.n);
+    consider(-disk.n);
+  }
+
+  void push_back(const Vec3& w) {
     consider(w);
     consider(-w);
   }
-  return best;
+  /// Whether candidates that cannot beat pruningBound() may be skipped.
+  bool prunes() const { return prune_slack_ >= 0.0; }
+  /// A depth no skipped candidate could reach: infinite until a positive depth
+  /// is found (the minimiser of a pair that shares a point has depth >= 0).
+  double pruningBound() const {
+    return prunes() && best_.depth > 0.0 ? best_.depth + prune_slack_
+                                         : std::numeric_limits<double>::infinity();
+  }
+  const Separation& best() const { return best_; }
+  double inflation() const { return inflation_; }
+
+ private:
+  void consider(const Vec3& w) {
+    const double length = w.norm();
+    if (!(length > 0.0)) return;
+    const Vec3 unit = w / length;
+    const double depth = depth_along_(unit);
+    if (depth < best_.depth) best_ = Separation{depth, unit};
+  }
+
+  DepthAlong depth_along_;
+  double prune_slack_;
+  double inflation_;
+  Separation best_;
+};
+
+/// The shortest separation among the disk's normals and `shape_directions`,
+/// nothing skipped.
+template <typename Directions, typename DepthAlong>
+Separation shortestSeparation(const DiskInShape& disk, const Directions& shape_directions,
+                              DepthAlong depth_along) {
+  SeparationSearch<DepthAlong> search(disk, depth_along, -1.0);
+  for (const Vec3& w : shape_directions) search.push_back(w);
+  return search.best();
 }
+
+/// Candidates of a pair known to share a point are skipped when their depth
+/// is certainly above the best plus this many scene sizes: far above the
+/// rounding of the bounds that rule them out, far below any depth difference
+/// that matters (the depth's promise is 1e-12 of the scene).
+constexpr double kPrunedCandidateSlack = 1e-12;
 
 /// The contact of an intersecting pair (frame S in, world out): pos the common
 /// point, the shortest separation's depth and direction.
@@ -144,16 +190,23 @@ struct DiskShapePair;
 ///   static double boundingRadius(const Shape&);     // about the shape's origin
 ///   static double inflation(const Shape&);          // rho: X = core + B_rho
 ///   static Target target(const Shape&);             // the core, in the shape frame
-///   static auto contactDirections(const Target&, const DiskInShape&);
-///                                          // a range of Vec3, shape frame
+///   template <typename Search>
+///   static void contactDirections(const Target&, const DiskInShape&, Search*);
+///                       // pushes the shape's candidates (shape frame) to the
+///                       // search (SeparationSearch), may skip by its bound
 template <typename S, typename Shape, typename Traits>
 struct GenericDiskShapePair {
+  /// `prune_slack`: as SeparationSearch's (negative unless the pair is known
+  /// to share a point).
   template <typename Target>
-  static Separation shortestSeparation(const Target& target, const DiskInShape& disk, double rho) {
+  static Separation shortestSeparation(const Target& target, const DiskInShape& disk, double rho,
+                                       double prune_slack) {
     const auto depth_along = [&](const Vec3& w) {
       return disk.support(w) - (w.dot(target.support(-w)) - rho);
     };
-    return internal::shortestSeparation(disk, Traits::contactDirections(target, disk), depth_along);
+    SeparationSearch<decltype(depth_along)> search(disk, depth_along, prune_slack, rho);
+    Traits::contactDirections(target, disk, &search);
+    return search.best();
   }
 
   /// Whether the solver left the overlap open (not within touching, not proven
@@ -168,7 +221,7 @@ struct GenericDiskShapePair {
     if constexpr (kExactDiskShapePenetration<Shape>) {
       const double touching = kShapeTouchingTolerance * scale;
       if (!(solution.distance > touching && !(solution.lower_bound > touching))) return false;
-      *separation = shortestSeparation(target, disk, rho);
+      *separation = shortestSeparation(target, disk, rho, /*prune_slack=*/-1.0);
       return (*separation)->depth > kOpenOverlapDepth * scale;
     }
     return false;
@@ -212,7 +265,9 @@ struct GenericDiskShapePair {
     if (contact) {
       // pos: the common point, or midway between the solver's nearest points
       // of an overlap it left open (whose separation is already known).
-      if (!separation) separation = shortestSeparation(target, disk, rho);
+      // The solver proved a common point (to the touching tolerance) unless
+      // overlapLeftOpen decided, which kept its separation.
+      if (!separation) separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
       *contact = contactInWorld<S>(X_WS, 0.5 * (solution.p + solution.q), *separation);
     }
     return true;

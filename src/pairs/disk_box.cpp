@@ -70,13 +70,14 @@ struct BoxTraits {
   /// inside each octant, an edge on an arc, a face at +-e_i. The face normals,
   /// and the candidates of the 8 corners and the 12 edge lines
   /// (feature_candidates.h; docs/penetration_depth.md, section 7).
-  static std::vector<Vec3> contactDirections(const BoxTarget& target, const DiskInShape& disk) {
-    std::vector<Vec3> directions = {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
-    directions.reserve(80);
+  template <typename Search>
+  static void contactDirections(const BoxTarget& target, const DiskInShape& disk,
+                                Search* directions) {
+    for (int i = 0; i < 3; ++i) directions->push_back(Vec3::Unit(i));
     const Vec3& half = target.half;
     for (const double x : {-half.x(), half.x()}) {
       for (const double y : {-half.y(), half.y()}) {
-        for (const double z : {-half.z(), half.z()}) addVertexCandidates(disk, Vec3(x, y, z), &directions);
+        for (const double z : {-half.z(), half.z()}) addVertexCandidates(disk, Vec3(x, y, z), directions);
       }
     }
     for (int i = 0; i < 3; ++i) {  // the 4 edges along e_i, through (0, +-half_j, +-half_k)
@@ -86,11 +87,10 @@ struct BoxTraits {
           Vec3 point = Vec3::Zero();
           point[j] = side_j * half[j];
           point[k] = side_k * half[k];
-          addEdgeLineCandidates(disk, point, Vec3::Unit(i), &directions);
+          addEdgeLineCandidates(disk, point, Vec3::Unit(i), directions);
         }
       }
     }
-    return directions;
   }
 };
 

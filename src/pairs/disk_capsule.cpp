@@ -50,15 +50,13 @@ struct CapsuleTraits {
   /// F = h_disk(w) + rho with w horizontal, stationary where the disk's support
   /// point b has its horizontal part along w and normal to the rim tangent
   /// (addEdgeLineCandidates on the axis; docs/penetration_depth.md, section 7).
-  static std::vector<Vec3> contactDirections(const SegmentTarget& target,
-                                             const DiskInShape& disk) {
-    std::vector<Vec3> directions;
-    directions.reserve(16);
+  template <typename Search>
+  static void contactDirections(const SegmentTarget& target, const DiskInShape& disk,
+                                Search* directions) {
     for (const double end : {-target.half_length, target.half_length}) {
-      addVertexCandidates(disk, Vec3(0.0, 0.0, end), &directions);
+      addVertexCandidates(disk, Vec3(0.0, 0.0, end), directions);
     }
-    addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), &directions);
-    return directions;
+    addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), directions);
   }
 };
 

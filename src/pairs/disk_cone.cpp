@@ -96,8 +96,9 @@ struct ConeTarget {
 /// both conditions: from g_xy (undefined where the rim point is on the axis)
 /// and from m . t = 0 (two solutions; ill-conditioned where t is nearly
 /// vertical), all appended.
-inline void addConeSideCandidates(const DiskInShape& disk, double radius, double half_length,
-                                  std::vector<Vec3>* directions) {
+template <typename Search>
+void addConeSideCandidates(const DiskInShape& disk, double radius, double half_length,
+                           Search* directions) {
   using namespace trig_roots;
   const double height = 2.0 * half_length;  // the 2h of the side normal
   const double slant = std::hypot(height, radius);
@@ -158,13 +159,13 @@ struct ConeTraits {
   /// -z), and the side's generators on the circle between them: the apex's
   /// vertex candidates, the base's disk-disk candidates and the side's
   /// (addConeSideCandidates; docs/penetration_depth.md, section 7).
-  static std::vector<Vec3> contactDirections(const ConeTarget& target, const DiskInShape& disk) {
-    std::vector<Vec3> directions = {Vec3::UnitZ()};
-    directions.reserve(64);
-    addVertexCandidates(disk, Vec3(0.0, 0.0, target.half_length), &directions);
-    addFlatEndCandidates(disk, target.flatEnds()[0], &directions);
-    addConeSideCandidates(disk, target.radius, target.half_length, &directions);
-    return directions;
+  template <typename Search>
+  static void contactDirections(const ConeTarget& target, const DiskInShape& disk,
+                                Search* directions) {
+    directions->push_back(Vec3::UnitZ());
+    addVertexCandidates(disk, Vec3(0.0, 0.0, target.half_length), directions);
+    addFlatEndCandidates(disk, target.flatEnds()[0], directions);
+    addConeSideCandidates(disk, target.radius, target.half_length, directions);
   }
 };
 

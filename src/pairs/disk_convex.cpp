@@ -342,23 +342,20 @@ struct ConvexTraits {
   /// depth is the exact penetration depth of a Convex whose faces bound the
   /// hull of its vertices: the face normals, and the vertices' and edge lines'
   /// candidates (feature_candidates.h; docs/penetration_depth.md, section 7).
-  static std::vector<Vec3> contactDirections(const ConvexTarget<S>& target,
-                                             const DiskInShape& disk) {
+  template <typename Search>
+  static void contactDirections(const ConvexTarget<S>& target, const DiskInShape& disk,
+                                Search* directions) {
     const auto& vertices = target.convex->getVertices();
-    std::vector<Vec3> directions;
-    const std::vector<std::array<int, 2>> edges = ConvexTarget<S>::edgesOf(*target.convex);
-    directions.reserve(target.faces.size() + 2 * vertices.size() + 4 * edges.size());
-    for (const ConvexFace& face : target.faces) directions.push_back(face.unit_normal);
+    for (const ConvexFace& face : target.faces) directions->push_back(face.unit_normal);
     for (const auto& vertex : vertices) {
-      addVertexCandidates(disk, vertex.template cast<double>(), &directions);
+      addVertexCandidates(disk, vertex.template cast<double>(), directions);
     }
-    for (const auto& edge : edges) {
+    for (const auto& edge : ConvexTarget<S>::edgesOf(*target.convex)) {
       const Vec3 from = vertices[edge[0]].template cast<double>();
       const Vec3 along = vertices[edge[1]].template cast<double>() - from;
       const double length = ConvexTarget<S>::safeNorm(along);
-      if (length > 0.0) addEdgeLineCandidates(disk, from, along / length, &directions);
+      if (length > 0.0) addEdgeLineCandidates(disk, from, along / length, directions);
     }
-    return directions;
   }
 };
 

@@ -69,13 +69,12 @@ struct CylinderTraits {
   /// its candidates (docs/penetration_depth.md, section 2). On the circle F =
   /// h_disk(w) + radius, stationary where the disk's support is normal to the
   /// axis (section 7).
-  static std::vector<Vec3> contactDirections(const CylinderTarget& target,
-                                             const DiskInShape& disk) {
-    std::vector<Vec3> directions = {Vec3::UnitZ()};
-    directions.reserve(64);
-    addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), &directions);
-    for (const FlatEnd& end : target.flatEnds()) addFlatEndCandidates(disk, end, &directions);
-    return directions;
+  template <typename Search>
+  static void contactDirections(const CylinderTarget& target, const DiskInShape& disk,
+                                Search* directions) {
+    directions->push_back(Vec3::UnitZ());
+    addEdgeLineCandidates(disk, Vec3::Zero(), Vec3::UnitZ(), directions, target.radius);
+    for (const FlatEnd& end : target.flatEnds()) addFlatEndCandidates(disk, end, directions);
   }
 };
 

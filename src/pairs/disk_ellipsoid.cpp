@@ -137,8 +137,9 @@ struct EllipsoidTraits {
     return EllipsoidTarget{e};
   }
   /// The principal axes.
-  static std::array<Vec3, 3> contactDirections(const EllipsoidTarget&, const DiskInShape&) {
-    return {Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};
+  template <typename Search>
+  static void contactDirections(const EllipsoidTarget&, const DiskInShape&, Search* directions) {
+    for (int i = 0; i < 3; ++i) directions->push_back(Vec3::Unit(i));
   }
 };
 

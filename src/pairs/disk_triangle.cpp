@@ -61,18 +61,17 @@ struct TriangleTraits {
   /// depth is the exact penetration depth: the triangle's normal (zero when
   /// degenerate, then skipped), and the candidates of its vertices and edge
   /// lines (feature_candidates.h; docs/penetration_depth.md, section 7).
-  static std::vector<Vec3> contactDirections(const TriangleTarget& target,
-                                             const DiskInShape& disk) {
+  template <typename Search>
+  static void contactDirections(const TriangleTarget& target, const DiskInShape& disk,
+                                Search* directions) {
     const auto& vertices = target.triangle.vertices;
-    std::vector<Vec3> directions = {target.triangle.unit_normal};
-    directions.reserve(32);
+    directions->push_back(target.triangle.unit_normal);
+    for (int i = 0; i < 3; ++i) addVertexCandidates(disk, vertices[i], directions);
     for (int i = 0; i < 3; ++i) {
-      addVertexCandidates(disk, vertices[i], &directions);
       const Vec3 along = vertices[(i + 1) % 3] - vertices[i];
       const double length = along.norm();
-      if (length > 0.0) addEdgeLineCandidates(disk, vertices[i], along / length, &directions);
+      if (length > 0.0) addEdgeLineCandidates(disk, vertices[i], along / length, directions);
     }
-    return directions;
   }
 };
 
