@@ -52,11 +52,6 @@ constexpr double kAlongNormal = 1e-9;
 /// the rounding of b, a and PD and the square of a root's error.
 constexpr double kWitnessResidual = 1e-13;
 
-/// Margin (scene sizes) of the arcs ruled out for the roots of Q: far above
-/// the rounding of a rim point's distance to rim 1, so an arc is dropped only
-/// when its candidates are certainly worse than the best.
-constexpr double kPrunedArcSlack = 1e-12;
-
 /// The best rim pair is polished by at most kPolishIterations Newton steps,
 /// stopped at a step (radians, summed over both angles) below
 /// kPolishConverged (the resolution of an angle) or above kMaxPolishStep (the
@@ -101,13 +96,13 @@ class PenetrationSearch {
     if (b) best_.b = *b, best_.a = *a;
   }
 
+  /// The smallest F found so far: an upper bound on PD.
+  double bestValue() const { return best_.value; }
+
   /// The candidates of rim angle theta of disk 2 (given as cos, sin): its rim
   /// point a and the rim points b of disk 1 that make (b, a) critical for the
   /// distance between the rims (nearest and farthest to a), each giving the
   /// direction (b - a) / |b - a|.
-  /// The smallest F found so far: an upper bound on PD.
-  double bestValue() const { return best_.value; }
-
   void considerRimAngle(double cos_theta, double sin_theta) {
     const Vec3 e2 = cos_theta * u_ + sin_theta * v_;  // outward radial of disk 2 at a
     const Vec3 a = c_ + r2_ * e2;
@@ -250,10 +245,6 @@ Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Bes
   return out;
 }
 
-/// The penetration of a pair in frame 1 whose lengths are in scene sizes.
-/// The rim-pair candidates of docs/penetration_depth.md section 2: the
-/// directions each root of Q gives (or, Q vanishing, kFixedAnglesWhenQVanishes
-/// angles), offered to `search`.
 /// Arcs of disk 2's rim where a critical rim pair can still beat `bound()`, an
 /// upper bound on PD plus a slack (infinite: every arc): at a minimiser off
 /// the kinks PD = |b - a| with b the nearest or farthest point of rim 1 to a
@@ -279,8 +270,10 @@ struct ArcsThatCanBeatBest {
   }
 };
 
-/// `bound`: only the roots that can beat it (ArcsThatCanBeatBest); nullptr:
-/// every candidate.
+/// The rim-pair candidates of docs/penetration_depth.md section 2: the
+/// directions each root of Q gives (or, Q vanishing, kFixedAnglesWhenQVanishes
+/// angles), offered to `search`. `bound`: only the roots that can beat it
+/// (ArcsThatCanBeatBest); nullptr: every root.
 void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
                            const std::function<double()>* bound) {
   // Q(theta) = rho^2 L^2 - r1^2 K^2 along disk 2's rim a(theta) = c + r2 (cos u + sin v).
@@ -328,6 +321,7 @@ void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
 
 }
 
+/// The penetration of a pair in frame 1 whose lengths are in scene sizes.
 /// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
 /// which only changes the order of the kinks so that the tie-break is the
 /// caller's +n1 either way.
@@ -358,7 +352,8 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
   // min F = -d lies at a critical pair no distance to rim 1 bounds.
   const std::function<double()> bound = [&search] {
     const double best = search.bestValue();
-    return best > 0.0 ? best + kPrunedArcSlack : std::numeric_limits<double>::infinity();
+    return best > 0.0 ? best + internal::kPrunedCandidateSlack
+                      : std::numeric_limits<double>::infinity();
   };
   considerRimCandidates(pair, search, internal::commonPoint(pair) ? &bound : nullptr);
   search.polishBestRimPair();

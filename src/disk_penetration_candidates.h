@@ -9,6 +9,12 @@
 namespace fcl_disk {
 namespace internal {
 
+/// Candidates of a pair known to share a point are skipped only when they are
+/// certainly worse than the best found plus this many scene sizes: far above
+/// the rounding of the bounds that rule them out, far below any depth
+/// difference that matters (the depth's promise is 1e-12 of the scene).
+constexpr double kPrunedCandidateSlack = 1e-12;
+
 /// Where a bound may rule out arcs of a rim for the roots of a candidate
 /// equation, arcs wider than this (radians) are halved before their roots are
 /// isolated, so that most of the circle is ruled out whole (on the disk-disk

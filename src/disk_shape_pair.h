@@ -13,6 +13,7 @@
 #include <optional>
 #include <utility>
 
+#include "disk_penetration_candidates.h"
 #include "disk_shape_solver.h"
 #include "fcl_disk/disk_shape_distance.h"
 
@@ -151,12 +152,6 @@ Separation shortestSeparation(const DiskInShape& disk, const Directions& shape_d
   return search.best();
 }
 
-/// Candidates of a pair known to share a point are skipped when their depth
-/// is certainly above the best plus this many scene sizes: far above the
-/// rounding of the bounds that rule them out, far below any depth difference
-/// that matters (the depth's promise is 1e-12 of the scene).
-constexpr double kPrunedCandidateSlack = 1e-12;
-
 /// The contact of an intersecting pair (frame S in, world out): pos the common
 /// point, the shortest separation's depth and direction.
 template <typename S>
@@ -264,10 +259,11 @@ struct GenericDiskShapePair {
     }
     if (contact) {
       // pos: the common point, or midway between the solver's nearest points
-      // of an overlap it left open (whose separation is already known).
-      // The solver proved a common point (to the touching tolerance) unless
-      // overlapLeftOpen decided, which kept its separation.
-      if (!separation) separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
+      // of an overlap it left open. Without a separation from overlapLeftOpen
+      // the solver proved a common point, so candidates may be skipped.
+      if (!separation) {
+        separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
+      }
       *contact = contactInWorld<S>(X_WS, 0.5 * (solution.p + solution.q), *separation);
     }
     return true;

@@ -827,11 +827,13 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
         kappa = r * at.hessian3.quadratic(tangent3) + std::max(outward, 0.0);
       }
     }
+    // The model step and the decrease of psi its model predicts.
     Vec2 step = Vec2::Zero();
-    Mat2 planar_hessian;
+    double model_decrease = 0.0;
     auto model_step = [&] {
-      planar_hessian = planarHessian(at.hessian3, disk);
+      const Mat2 planar_hessian = planarHessian(at.hessian3, disk);
       step = modelStepOnDisk(planar_hessian, at.gradient, s, r, kShapeGradientRounding * scale);
+      model_decrease = -(at.gradient.dot(step) + 0.5 * step.dot(planar_hessian * step));
     };
     if (!rim_step) model_step();
     // What the step expects to gain, in distance (psi = d^2 / 2): Newton's
@@ -841,8 +843,7 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     const double expected_decrease =
         rim_step ? (kappa > 0.0 ? (0.5 * r * sigma * sigma) / (kappa * core_distance)
                                 : std::numeric_limits<double>::infinity())
-                 : -(at.gradient.dot(step) + 0.5 * step.dot(planar_hessian * step)) /
-                       core_distance;
+                 : model_decrease / core_distance;
     if (!certified && expected_decrease <= certify_below && certificate_closes()) {
       return finish(iteration, lower);
     }
@@ -865,8 +866,7 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
       // The model reaching psi = 0 means the step ends on X's boundary, where
       // psi is 0 only to rounding: twice the step, when it stays on the disk,
       // is usually inside X, an overlap proven one iteration sooner.
-      const double model_psi = at.psi + slope + 0.5 * step.dot(planar_hessian * step);
-      if (rho == 0.0 && model_psi <= kShapeModelReachesX * at.psi &&
+      if (rho == 0.0 && at.psi - model_decrease <= kShapeModelReachesX * at.psi &&
           (s + 2.0 * step).squaredNorm() <= r * r) {
         next = evaluateAt(target, disk, s + 2.0 * step);
         moved = next.psi == 0.0;

@@ -298,18 +298,20 @@ struct ConvexTarget {
     return best;
   }
 
-  /// max over the vertices of w.v.
-  double supportValue(const Vec3& w) const {
+  /// w.v for every vertex v, in one vectorised pass (this thread's buffer,
+  /// valid until the next call).
+  const Eigen::VectorXd& alongVertices(const Vec3& w) const {
     thread_local Eigen::VectorXd along;
     along.noalias() = points.col(0) * w.x() + points.col(1) * w.y() + points.col(2) * w.z();
-    return along.maxCoeff();
+    return along;
   }
 
+  /// max over the vertices of w.v.
+  double supportValue(const Vec3& w) const { return alongVertices(w).maxCoeff(); }
+
   Vec3 support(const Vec3& w) const {
-    thread_local Eigen::VectorXd along;
-    along.noalias() = points.col(0) * w.x() + points.col(1) * w.y() + points.col(2) * w.z();
     Eigen::Index best = 0;  // ties take the first vertex
-    along.maxCoeff(&best);
+    alongVertices(w).maxCoeff(&best);
     return points.row(best).transpose();
   }
 
