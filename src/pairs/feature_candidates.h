@@ -94,10 +94,7 @@ void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e
     directions->push_back((b - s) - (b - s).dot(e) * e);  // b - x
     directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
   };
-  if (!directions->prunes()) {
-    forEachRootAngle<2>(E, kBernsteinNoise * size, visit);
-    return;
-  }
+  // A search that does not prune has an infinite bound: every arc is kept.
   forEachRootAngle<2>(E, kBernsteinNoise * size, visit,
                       EdgeArcsThatCanBeatBound<Search>{disk, s, e,
                                                        offset + directions->inflation(),
