@@ -177,19 +177,20 @@ inline double rootInBracket(const double* p, const double* dp, int degree, doubl
   return t;
 }
 
-/// p in the Bernstein basis of [-1, 1]: p(t) = sum_i b_i binom(N, i) s^i (1 - s)^(N - i)
-/// with t = 2 s - 1. By Descartes' rule for this basis, p has at most as many
+/// p in the Bernstein basis of [lo, hi]: p(t) = sum_i b_i binom(N, i) s^i (1 - s)^(N - i)
+/// with t = lo + (hi - lo) s. By Descartes' rule for this basis, p has at most as many
 /// roots in the interval as b has sign changes, and the same parity.
 template <int N>
 using Bernstein = std::array<double, N + 1>;
 
 template <int N>
-Bernstein<N> toBernstein(const Polynomial<N>& p) {
-  // q(s) = p(2 s - 1) by Horner's scheme on polynomials in s.
+Bernstein<N> toBernstein(const Polynomial<N>& p, double lo = -1.0, double hi = 1.0) {
+  // q(s) = p(lo + (hi - lo) s) by Horner's scheme on polynomials in s.
+  const double width = hi - lo;
   Polynomial<N> q{};
   for (int j = N; j >= 0; --j) {
-    for (int i = N; i >= 1; --i) q[i] = 2 * q[i - 1] - q[i];
-    q[0] = p[j] - q[0];
+    for (int i = N; i >= 1; --i) q[i] = width * q[i - 1] + lo * q[i];
+    q[0] = p[j] + lo * q[0];
   }
   // b_i = sum_{j <= i} binom(i, j) / binom(N, j) q_j.
   struct Weights {
@@ -295,14 +296,15 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
     Bernstein<N> b;
     double lo, hi;
     int depth;
+    bool has_b;  ///< false: split for the arc test only, b not formed yet
   };
   std::array<Interval, kMaxSubdivisions + 2> stack;
   int size = 0, examined = 0;
   // de Casteljau at s = 1/2: the left half's coefficients are the first
   // entries of each level, the right half's the last.
   const auto halve = [&](const Interval& interval, double mid) {
-    Interval left{{}, interval.lo, mid, interval.depth + 1};
-    Interval right{{}, mid, interval.hi, interval.depth + 1};
+    Interval left{{}, interval.lo, mid, interval.depth + 1, true};
+    Interval right{{}, mid, interval.hi, interval.depth + 1, true};
     Bernstein<N> level = interval.b;
     for (int r = 0; r <= N; ++r) {
       left.b[r] = level[0];
@@ -312,27 +314,31 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
     stack[size++] = right;
     stack[size++] = left;
   };
-  stack[size++] = {toBernstein<N>(p), -1.0, 1.0, 0};
+  // Intervals wider than may_hold.split_wider_than are split before they are
+  // decided, so that the test sees intervals small enough to rule out; their
+  // halves get their coefficients only if they pass it.
+  stack[size++] = {{}, -1.0, 1.0, 0, false};
   while (size > 0) {
-    const Interval interval = stack[--size];
+    Interval interval = stack[--size];
     const double mid = 0.5 * (interval.lo + interval.hi);
     if (++examined > kMaxIntervals) {
       add(mid);
       continue;
     }
     if (!may_hold(interval.lo, interval.hi)) continue;
+    if (interval.hi - interval.lo > may_hold.split_wider_than &&
+        interval.depth < kMaxSubdivisions && size + 2 <= int(stack.size())) {
+      stack[size++] = {{}, mid, interval.hi, interval.depth + 1, false};
+      stack[size++] = {{}, interval.lo, mid, interval.depth + 1, false};
+      continue;
+    }
+    if (!interval.has_b) interval.b = toBernstein<N>(p, interval.lo, interval.hi);
     const Bernstein<N>& b = interval.b;
-    const bool split_for_test = interval.hi - interval.lo > may_hold.split_wider_than &&
-                                interval.depth < kMaxSubdivisions && size + 2 <= int(stack.size());
     const int changes = signChanges(b);
     if (changes == 0) {
       double smallest = std::abs(b[0]);
       for (const double x : b) smallest = std::min(smallest, std::abs(x));
       if (smallest > noise) continue;  // |p| > noise on the interval: no root
-    }
-    if (split_for_test) {  // halved before it is decided: its halves may be ruled out
-      halve(interval, mid);
-      continue;
     }
     // An end within the noise of zero may be a root that does not change sign
     // (a double root where a halving fell, as on the symmetry axis of a
