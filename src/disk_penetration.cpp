@@ -324,8 +324,9 @@ void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
 /// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
 /// which only changes the order of the kinks so that the tie-break is the
-/// caller's +n1 either way.
-Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
+/// caller's +n1 either way. `shares_point`: the disks are known to share a
+/// point (commonPoint found one); otherwise it is tested here.
+Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped, bool shares_point) {
   PenetrationSearch search(pair);
   // Disk 2's kinks are where |P2 w| = sqrt((u.w)^2 + (v.w)^2) vanishes, along
   // u x v: R's third column only to within an accepted rotation's defect.
@@ -355,7 +356,8 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped) {
     return best > 0.0 ? best + internal::kPrunedCandidateSlack
                       : std::numeric_limits<double>::infinity();
   };
-  considerRimCandidates(pair, search, internal::commonPoint(pair) ? &bound : nullptr);
+  const bool prune = shares_point || internal::commonPoint(pair).has_value();
+  considerRimCandidates(pair, search, prune ? &bound : nullptr);
   search.polishBestRimPair();
   return withWitnesses(pair, search.best());
 }
@@ -390,12 +392,11 @@ DiskSignedDistanceResult<S> nanSignedDistance() {
   return result;
 }
 
-}  // namespace
-
+/// diskPenetration of a valid pair; `shares_point` as for penetrationInFrame1.
 template <typename S>
-DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1, S r2,
-                                            const fcl::Transform3<S>& X_W2) {
-  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return nanSignedDistance<S>();
+DiskSignedDistanceResult<S> penetrationOfValidPair(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                                   const fcl::Transform3<S>& X_W2,
+                                                   bool shares_point) {
   // Q parameterises the rim of the pair's disk 2 and measures from disk 1's
   // axis: with the smaller disk as disk 2 its terms are of the size of its
   // features (with a disk 1e-5 the size of the other as disk 2's partner,
@@ -408,7 +409,7 @@ DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1
   const double scale = pair.scale();
   const PairInFrame1 unit_pair =
       PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
-  const Penetration found = penetrationInFrame1(unit_pair, swapped);
+  const Penetration found = penetrationInFrame1(unit_pair, swapped, shares_point);
 
   const internal::Mat3 R_WA = X_WA.linear().template cast<double>();
   const Vec3 c_A = X_WA.translation().template cast<double>();
@@ -423,6 +424,32 @@ DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1
   result.direction = (swapped ? Vec3(-w_W) : w_W).template cast<S>();
   return result;
 }
+
+}  // namespace
+
+template <typename S>
+DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                            const fcl::Transform3<S>& X_W2) {
+  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return nanSignedDistance<S>();
+  return penetrationOfValidPair(r1, X_W1, r2, X_W2, false);
+}
+
+namespace internal {
+
+template <typename S>
+std::optional<DiskSignedDistanceResult<S>> penetrationIfIntersecting(
+    S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2) {
+  if (!isValidDiskPair(r1, X_W1, r2, X_W2)) return std::nullopt;
+  if (!commonPoint(PairInFrame1::fromWorld(r1, X_W1, r2, X_W2))) return std::nullopt;
+  return penetrationOfValidPair(r1, X_W1, r2, X_W2, true);
+}
+
+template std::optional<DiskSignedDistanceResult<float>> penetrationIfIntersecting(
+    float, const fcl::Transform3<float>&, float, const fcl::Transform3<float>&);
+template std::optional<DiskSignedDistanceResult<double>> penetrationIfIntersecting(
+    double, const fcl::Transform3<double>&, double, const fcl::Transform3<double>&);
+
+}  // namespace internal
 
 template <typename S>
 DiskSignedDistanceResult<S> signedDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,

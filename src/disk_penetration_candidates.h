@@ -1,9 +1,12 @@
-// Internal: the candidate directions of the disk-disk penetration depth, for the
-// disk-shape pairs whose shape contains disks (a cylinder's caps).
+// Internal entries of the disk-disk penetration depth: for callers that decide
+// the overlap first (the hook, intersectDisks), and the candidate directions
+// for the disk-shape pairs whose shape contains disks (a cylinder's caps).
 #pragma once
 
 #include <functional>
+#include <optional>
 
+#include "fcl_disk/disk_penetration.h"
 #include "pair_in_frame1.h"
 
 namespace fcl_disk {
@@ -20,6 +23,14 @@ constexpr double kPrunedCandidateSlack = 1e-12;
 /// isolated, so that most of the circle is ruled out whole (on the disk-disk
 /// search 0.5 and 1 rad cost the same to 2%, 0.125 and 2 rad 8% more).
 constexpr double kPrunedArcWidth = 0.5;
+
+/// diskPenetration() of two disks that intersect as intersectDisks() decides
+/// (a common point to the touching tolerance); nullopt when they do not, or
+/// for invalid input. One overlap test serves both the decision and the
+/// search's pruning, which needs it.
+template <typename S>
+std::optional<DiskSignedDistanceResult<S>> penetrationIfIntersecting(
+    S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2);
 
 /// Calls visit(w) for every direction of the candidate set of
 /// docs/penetration_depth.md section 2 for the pair (disk 1's frame, lengths

@@ -43,6 +43,7 @@
 #include "fcl_disk/exact_distance.h"
 #include "fcl_disk/fcl_templates.h"
 #include "disk_narrowphase.h"
+#include "disk_penetration_candidates.h"
 
 namespace fcl_disk {
 namespace {
@@ -150,17 +151,16 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
           ? almohamadSelimDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2)
           : exactDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2);
   if (std::isnan(answer.distance)) return answerNoDistance<S>(&disk1, &disk2, result);
-  if (request.enable_signed_distance && !(answer.distance > 0) &&
-      intersectDisks(disk1.radius, X_W1, disk2.radius, X_W2)) {
+  if (request.enable_signed_distance && !(answer.distance > 0)) {
     // Overlap, signed: minus the penetration depth, with the deepest points
-    // (p_W1 - p_W2 = PD * direction), as FCL's EPA reports them. Decided by
-    // intersectDisks, as collide() is: FCL's entry, for the indep solver,
-    // re-asks collide() for a contact whenever the answer is negative.
-    const DiskSignedDistanceResult<S> penetration =
-        diskPenetration(disk1.radius, X_W1, disk2.radius, X_W2);
-    if (isReportableDepth(-penetration.signed_distance)) {
-      keepIfNearer(result, penetration.signed_distance, &disk1, &disk2, penetration.p_W1,
-                   penetration.p_W2);
+    // (p_W1 - p_W2 = PD * direction), as FCL's EPA reports them. Decided as
+    // intersectDisks, and so collide(), decides: FCL's entry, for the indep
+    // solver, re-asks collide() for a contact whenever the answer is negative.
+    const auto penetration =
+        internal::penetrationIfIntersecting(disk1.radius, X_W1, disk2.radius, X_W2);
+    if (penetration && isReportableDepth(-penetration->signed_distance)) {
+      keepIfNearer(result, penetration->signed_distance, &disk1, &disk2, penetration->p_W1,
+                   penetration->p_W2);
       return result.min_distance;
     }
   }
