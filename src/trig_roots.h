@@ -216,6 +216,46 @@ Bernstein<N> toBernstein(const Polynomial<N>& p, double lo = -1.0, double hi = 1
   return b;
 }
 
+/// toBernstein on the dyadic intervals [-1 + 2k / 2^d, -1 + 2 (k + 1) / 2^d] of
+/// depth d < kDepths, the intervals the root search splits [-1, 1] into for an
+/// arc test, as linear maps of p's coefficients (column j: the image of t^j),
+/// so that forming an interval's coefficients is one matrix-vector product.
+template <int N>
+struct DyadicBernsteinMaps {
+  static constexpr int kDepths = 5;
+  std::array<std::array<Bernstein<N>, N + 1>, (1 << kDepths) - 1> maps;
+  DyadicBernsteinMaps() {
+    for (int depth = 0; depth < kDepths; ++depth) {
+      const double width = 2.0 / (1 << depth);
+      for (int k = 0; k < (1 << depth); ++k) {
+        for (int j = 0; j <= N; ++j) {
+          Polynomial<N> monomial{};
+          monomial[j] = 1.0;
+          maps[(1 << depth) - 1 + k][j] =
+              toBernstein<N>(monomial, -1.0 + k * width, -1.0 + (k + 1) * width);
+        }
+      }
+    }
+  }
+};
+
+/// p in the Bernstein basis of [lo, hi], the interval of the given depth of
+/// halvings of [-1, 1].
+template <int N>
+Bernstein<N> bernsteinOnDyadic(const Polynomial<N>& p, double lo, double hi, int depth) {
+  using Maps = DyadicBernsteinMaps<N>;
+  if (depth >= Maps::kDepths) return toBernstein<N>(p, lo, hi);
+  static const Maps maps;
+  // lo = -1 + k 2^(1 - depth) exactly: halvings of [-1, 1] are exact in binary.
+  const int k = static_cast<int>((lo + 1.0) * (1 << depth) / 2.0);
+  const auto& map = maps.maps[(1 << depth) - 1 + k];
+  Bernstein<N> b{};
+  for (int j = 0; j <= N; ++j) {
+    for (int i = 0; i <= N; ++i) b[i] += p[j] * map[j][i];
+  }
+  return b;
+}
+
 template <typename Coefficients>
 int signChanges(const Coefficients& b) {
   int changes = 0;
@@ -332,7 +372,7 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
       stack[size++] = {{}, interval.lo, mid, interval.depth + 1, false};
       continue;
     }
-    if (!interval.has_b) interval.b = toBernstein<N>(p, interval.lo, interval.hi);
+    if (!interval.has_b) interval.b = bernsteinOnDyadic<N>(p, interval.lo, interval.hi, interval.depth);
     const Bernstein<N>& b = interval.b;
     const int changes = signChanges(b);
     if (changes == 0) {
