@@ -63,6 +63,19 @@ constexpr double kPolishConverged = 1e-15;
 constexpr double kMaxPolishStep = 0.1;
 constexpr double kPolishSlack = 1e-15;
 
+/// A rim point of disk 2 within this (scene sizes) of disk 1's axis marks
+/// candidates Q places poorly: Q's values there are rho^2 <= 1e-6 of its
+/// terms, so its roots there lose 6 digits or more to rounding; the search is
+/// then run with the roles exchanged too (penetrationOfValidPair).
+constexpr double kNearAxis = 1e-3;
+
+/// Newton's method on F over the sphere (polishBestDirection) takes at most
+/// kDirectionPolishIterations steps, each halved at most
+/// kDirectionPolishHalvings times until F decreases (a 2^-30 step is below an
+/// angle's resolution next to the unit steps a curved valley may need).
+constexpr int kDirectionPolishIterations = 8;
+constexpr int kDirectionPolishHalvings = 30;
+
 // ---------------------------------------------------------------------------
 // The pair in disk 1's frame, lengths in scene sizes.
 
@@ -70,6 +83,9 @@ struct Penetration {
   double depth;  ///< PD, scene sizes.
   Vec3 w;        ///< unit minimiser, frame 1.
   Vec3 p1, p2;   ///< witnesses, frame 1, scene sizes.
+  /// The distance to disk 1's axis of the nearest rim point of disk 2 the
+  /// search considered (scene sizes; infinite when none).
+  double nearest_rim_to_axis = std::numeric_limits<double>::infinity();
 };
 
 class PenetrationSearch {
@@ -85,15 +101,19 @@ class PenetrationSearch {
   /// (b of disk 1, a of disk 2) the direction came from, if any.
   void consider(const Vec3& w, const Vec3* b = nullptr, const Vec3* a = nullptr) {
     if (sink_) (*sink_)(w);
-    const double p1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
-    const double in_plane2_u = u_.dot(w), in_plane2_v = v_.dot(w);
-    const double value = -c_.dot(w) + r1_ * p1 +
-                         r2_ * std::sqrt(in_plane2_u * in_plane2_u + in_plane2_v * in_plane2_v);
+    const double value = F(w);
     if (!(value < best_.value)) return;
     best_.value = value;
     best_.w = w;
     best_.from_rims = b != nullptr;
     if (b) best_.b = *b, best_.a = *a;
+  }
+
+  double F(const Vec3& w) const {
+    const double p1 = std::sqrt(w.x() * w.x() + w.y() * w.y());
+    const double in_plane2_u = u_.dot(w), in_plane2_v = v_.dot(w);
+    return -c_.dot(w) + r1_ * p1 +
+           r2_ * std::sqrt(in_plane2_u * in_plane2_u + in_plane2_v * in_plane2_v);
   }
 
   /// The smallest F found so far: an upper bound on PD.
@@ -108,6 +128,7 @@ class PenetrationSearch {
     const Vec3 a = c_ + r2_ * e2;
     const Vec3 t2 = -sin_theta * u_ + cos_theta * v_;
     const double rho = std::sqrt(a.x() * a.x() + a.y() * a.y());
+    nearest_rim_to_axis_ = std::min(nearest_rim_to_axis_, rho);
     if (rho > kOnAxisTolerance) {
       const Vec3 radial(a.x() / rho, a.y() / rho, 0.0);
       considerPair(r1_ * radial, a, t2, e2);
@@ -198,6 +219,64 @@ class PenetrationSearch {
     if (!(best_.value <= before.value + kPolishSlack)) best_ = before;
   }
 
+  /// Newton's method on F over the unit sphere from the best direction, when
+  /// it came from a rim pair. Next to disk 1's axis the pair equations are
+  /// ill-conditioned (the nearest point b of rim 1 to a turns fast with a's
+  /// angle) and F is nearly flat along a valley, so the best rim pair can be
+  /// far from the minimiser in w while F is smooth there: F's own Newton step
+  /// reaches it. Stops at a kink, at a Hessian that is not positive definite,
+  /// when no halving of the step lowers F, or at a step below
+  /// kPolishConverged; the result is kept only if F is smaller by more than
+  /// rounding (kPolishSlack).
+  void polishBestDirection() {
+    if (!best_.from_rims) return;
+    Vec3 w = best_.w;
+    double value = best_.value;
+    for (int i = 0; i < kDirectionPolishIterations; ++i) {
+      const Vec3 P1w(w.x(), w.y(), 0.0);
+      const Vec3 P2w = u_.dot(w) * u_ + v_.dot(w) * v_;
+      const double length1 = P1w.norm(), length2 = P2w.norm();
+      if (!(std::min(length1, length2) > kAlongNormal)) return;  // at a kink: not smooth
+      const Vec3 g = -c_ + (r1_ / length1) * P1w + (r2_ / length2) * P2w;
+      // r |P w|'s Hessian: (r / |P w|) (P - (P w)(P w)^T / |P w|^2).
+      const auto hessian = [&](const Vec3& e, const Vec3& f) {
+        const double along1 = e.x() * f.x() + e.y() * f.y();
+        const double along2 = u_.dot(e) * u_.dot(f) + v_.dot(e) * v_.dot(f);
+        return r1_ / length1 * (along1 - P1w.dot(e) * P1w.dot(f) / (length1 * length1)) +
+               r2_ / length2 * (along2 - P2w.dot(e) * P2w.dot(f) / (length2 * length2));
+      };
+      // A tangent basis (e1, e2) of the sphere at w; on the sphere the Hessian
+      // gains -(g.w) I.
+      const Vec3 e1 = w.unitOrthogonal(), e2 = w.cross(e1);
+      const double g_w = g.dot(w);
+      const double h11 = hessian(e1, e1) - g_w, h22 = hessian(e2, e2) - g_w;
+      const double h12 = hessian(e1, e2);
+      const double det = h11 * h22 - h12 * h12;
+      if (!(h11 > 0.0 && det > 0.0)) return;  // not next to a regular minimum
+      const double g1 = g.dot(e1), g2 = g.dot(e2);
+      double s1 = -(h22 * g1 - h12 * g2) / det, s2 = -(h11 * g2 - h12 * g1) / det;
+      // The valley may curve within the Newton step: halved until F decreases.
+      bool decreased = false;
+      for (int halving = 0; halving < kDirectionPolishHalvings && !decreased; ++halving) {
+        const Vec3 next = (w + s1 * e1 + s2 * e2).normalized();
+        const double next_value = F(next);
+        if (next_value < value) {
+          w = next;
+          value = next_value;
+          decreased = true;
+        } else {
+          s1 *= 0.5;
+          s2 *= 0.5;
+        }
+      }
+      if (!decreased) break;
+      if (std::abs(s1) + std::abs(s2) < kPolishConverged) break;
+    }
+    // A gain at rounding level keeps the rim pair, whose points are exactly on
+    // the rims (the support points of a direction known to rounding are not).
+    if (value < best_.value - kPolishSlack) consider(w);
+  }
+
   struct Best {
     double value = std::numeric_limits<double>::infinity();
     Vec3 w = Vec3::UnitZ();
@@ -205,11 +284,13 @@ class PenetrationSearch {
     Vec3 b = Vec3::Zero(), a = Vec3::Zero();
   };
   const Best& best() const { return best_; }
+  double nearestRimToAxis() const { return nearest_rim_to_axis_; }
 
  private:
   Vec3 c_, u_, v_;
   double r1_, r2_;
   Best best_;
+  double nearest_rim_to_axis_ = std::numeric_limits<double>::infinity();
   const std::function<void(const Vec3&)>* sink_;
 };
 
@@ -359,7 +440,10 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped, bool sha
   const bool prune = shares_point || internal::commonPoint(pair).has_value();
   considerRimCandidates(pair, search, prune ? &bound : nullptr);
   search.polishBestRimPair();
-  return withWitnesses(pair, search.best());
+  search.polishBestDirection();
+  Penetration found = withWitnesses(pair, search.best());
+  found.nearest_rim_to_axis = search.nearestRimToAxis();
+  return found;
 }
 
 }  // namespace
@@ -392,6 +476,26 @@ DiskSignedDistanceResult<S> nanSignedDistance() {
   return result;
 }
 
+/// The penetration found with one assignment of the roles: `swapped`, the
+/// caller's disk 2 is the search's disk 1, whose frame the search runs in.
+struct PenetrationWithRoles {
+  Penetration found;
+  bool swapped;
+  double scale;
+};
+
+template <typename S>
+PenetrationWithRoles penetrationWithRoles(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                          const fcl::Transform3<S>& X_W2, bool swapped,
+                                          bool shares_point) {
+  const PairInFrame1 pair = swapped ? PairInFrame1::fromWorld(r2, X_W2, r1, X_W1)
+                                    : PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
+  const double scale = pair.scale();
+  const PairInFrame1 unit_pair =
+      PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
+  return {penetrationInFrame1(unit_pair, swapped, shares_point), swapped, scale};
+}
+
 /// diskPenetration of a valid pair; `shares_point` as for penetrationInFrame1.
 template <typename S>
 DiskSignedDistanceResult<S> penetrationOfValidPair(S r1, const fcl::Transform3<S>& X_W1, S r2,
@@ -402,15 +506,20 @@ DiskSignedDistanceResult<S> penetrationOfValidPair(S r1, const fcl::Transform3<S
   // features (with a disk 1e-5 the size of the other as disk 2's partner,
   // Q's structure near the small disk would sit 1e-20 below its terms, under
   // the rounding).
-  const bool swapped = r2 > r1;
-  const auto& X_WA = swapped ? X_W2 : X_W1;  // the frame the search runs in
-  const PairInFrame1 pair = swapped ? PairInFrame1::fromWorld(r2, X_W2, r1, X_W1)
-                                    : PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
-  const double scale = pair.scale();
-  const PairInFrame1 unit_pair =
-      PairInFrame1::make(pair.c / scale, pair.R, pair.r1 / scale, pair.r2 / scale);
-  const Penetration found = penetrationInFrame1(unit_pair, swapped, shares_point);
-
+  PenetrationWithRoles best = penetrationWithRoles(r1, X_W1, r2, X_W2, r2 > r1, shares_point);
+  // Where rim 2 came within kNearAxis of disk 1's axis, Q's roots there are
+  // known only to a few digits; the other roles place those pairs from the
+  // other rim, and the smaller F of the two is the depth (each is an upper
+  // bound on it).
+  if (best.found.nearest_rim_to_axis < kNearAxis) {
+    const PenetrationWithRoles other =
+        penetrationWithRoles(r1, X_W1, r2, X_W2, !best.swapped, shares_point);
+    if (other.found.depth < best.found.depth - kPolishSlack) best = other;
+  }
+  const Penetration& found = best.found;
+  const bool swapped = best.swapped;
+  const double scale = best.scale;
+  const auto& X_WA = swapped ? X_W2 : X_W1;  // the frame the search ran in
   const internal::Mat3 R_WA = X_WA.linear().template cast<double>();
   const Vec3 c_A = X_WA.translation().template cast<double>();
   const Vec3 p_WA = c_A + R_WA * (found.p1 * scale), p_WB = c_A + R_WA * (found.p2 * scale);

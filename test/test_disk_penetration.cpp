@@ -1362,6 +1362,49 @@ TEST(RadiusRatios, SmallDiskAcrossALargeRimMatchesReference) {
   expectPenetrationMatchesReference(cases, "pairs of radius ratio 1e-6..1e-1 (and 1.3e-5)");
 }
 
+/// Perturbed symmetric chain links: disk 2 upright on disk 1's rim (its plane
+/// holds disk 1's normal and the radial line; centred r2 from c1 along it, so
+/// rim 2 runs through c1 along disk 1's axis), then turned by 1e-8..1e-1 rad
+/// about a random axis and moved by 1e-9..1e-2 r1; equal radii (each centre
+/// on the other's rim: F is then nearly constant along two arcs of
+/// directions) and radius ratios 0.2..5, both orders. A rim point next to the
+/// other disk's axis is where Q's roots lose their digits; the search runs
+/// with the roles exchanged too, and F is polished by Newton's method on the
+/// sphere (docs/penetration_depth.md, section 2). The first pose is the one
+/// fuzz_disk_intersection found (corpus regression-depth-rim-next-to-the-axis).
+TEST(PerturbedSymmetricChainLinks, MatchReference) {
+  using Pose = fcl::Transform3d;
+  PosedPairs cases;
+  {
+    Pose X1 = Pose::Identity(), X2 = Pose::Identity();
+    X1.translation() << -0.125, 0, 0;
+    X2.linear() << -0.99996936344906251, -0.0078276387644278991, 1.5318275468547554e-05,
+        1.5318275468547554e-05, -0.0039138193822136902, -0.99999234086226552,
+        0.0078276387644278991, -0.99996170431132847, 0.0039138193822141343;
+    cases.emplace_back(0.125, X1, 0.125, X2);
+  }
+  fcl_disk_test::Random rng(kSeed + 79);
+  constexpr int kLinkCases = 600;
+  while (int(cases.size()) < kLinkCases) {
+    const double r1 = rng.uniform(0.3, 2.0);
+    const double r2 = cases.size() % 2 == 0 ? r1 : r1 * rng.logUniform(0.2, 5.0);
+    Pose X1 = Pose::Identity(), X2 = Pose::Identity();
+    X1.linear() = rng.rotation();
+    X1.translation() = rng.inBall(1.0);
+    Eigen::Matrix3d upright;  // in-plane axes: disk 1's x and normal
+    upright.col(0) = X1.linear().col(0);
+    upright.col(1) = X1.linear().col(2);
+    upright.col(2) = -X1.linear().col(1);
+    const double turn = rng.logUniform(1e-8, 1e-1);
+    X2.linear() = Eigen::AngleAxisd(turn, rng.unitVector()).toRotationMatrix() * upright;
+    X2.translation() = X1.translation() + r2 * X1.linear().col(0) +
+                       rng.logUniform(1e-9, 1e-2) * r1 * rng.unitVector();
+    if (!fcl_disk::intersectDisks(r1, X1, r2, X2)) continue;
+    cases.emplace_back(r1, X1, r2, X2);
+  }
+  expectPenetrationMatchesReference(cases, "perturbed symmetric chain links");
+}
+
 /// Pairs symmetric under a reflection (disk 1 in the plane x = 0, disk 2
 /// centred in it with its normal in it too): Q is even about the rim angle
 /// on the symmetry plane and may touch zero there (a double root) exactly

@@ -58,7 +58,10 @@ struct DiskSignedDistanceResult {
 /// pairs) at 64 rim angles. Every value F(w) is an upper bound on PD, and the
 /// candidate set contains a global minimiser, so the smallest value is PD (a
 /// proof, not a local search). The best rim pair is then polished by
-/// Newton's method on the two critical-pair equations.
+/// Newton's method on the two critical-pair equations, and its direction by
+/// Newton's method on F over the sphere. Where a rim point of one disk comes
+/// within 1e-3 of the scene of the other's axis, Q's roots there lose their
+/// digits to rounding, and the search is run with the roles exchanged too.
 ///
 /// Guarantee (double): |PD - PD_true| <= 1e-12 * (r1 + r2 + |c1 - c2|), tested
 /// against an independent long-double reference; p_W1 on disk 1 and p_W2 on disk
