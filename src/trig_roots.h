@@ -359,17 +359,20 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
   // halves get their coefficients only if they pass it.
   stack[size++] = {{}, -1.0, 1.0, 0, false};
   while (size > 0) {
-    Interval interval = stack[--size];
-    const double mid = 0.5 * (interval.lo + interval.hi);
+    // In place: the slot is reused only by the halves pushed last, which
+    // read it before they are written (halve copies b and the ends first).
+    Interval& interval = stack[--size];
+    const double lo = interval.lo, hi = interval.hi, mid = 0.5 * (lo + hi);
+    const int depth = interval.depth;
     if (++examined > kMaxIntervals) {
       add(mid);
       continue;
     }
-    if (!may_hold(interval.lo, interval.hi)) continue;
-    if (interval.hi - interval.lo > may_hold.split_wider_than &&
-        interval.depth < kMaxSubdivisions && size + 2 <= int(stack.size())) {
-      stack[size++] = {{}, mid, interval.hi, interval.depth + 1, false};
-      stack[size++] = {{}, interval.lo, mid, interval.depth + 1, false};
+    if (!may_hold(lo, hi)) continue;
+    if (hi - lo > may_hold.split_wider_than && depth < kMaxSubdivisions &&
+        size + 2 <= int(stack.size())) {
+      stack[size++] = {{}, mid, hi, depth + 1, false};
+      stack[size++] = {{}, lo, mid, depth + 1, false};
       continue;
     }
     if (!interval.has_b) interval.b = bernsteinOnDyadic<N>(p, interval.lo, interval.hi, interval.depth);
