@@ -258,6 +258,12 @@ Bernstein<N> bernsteinOnDyadic(const Polynomial<N>& p, double lo, double hi, int
 
 template <typename Coefficients>
 int signChanges(const Coefficients& b) {
+  // Without zeros (almost always), branch-free: adjacent signs that differ.
+  bool any_zero = false;
+  int adjacent_changes = 0;
+  for (std::size_t i = 0; i < b.size(); ++i) any_zero |= b[i] == 0.0;
+  for (std::size_t i = 0; i + 1 < b.size(); ++i) adjacent_changes += (b[i] < 0) != (b[i + 1] < 0);
+  if (!any_zero) return adjacent_changes;
   int changes = 0;
   double last = 0.0;
   for (const double x : b) {
@@ -395,13 +401,7 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
     }
     std::array<double, N> derivative;  // p' in the Bernstein basis, up to a factor
     for (int i = 0; i < N; ++i) derivative[i] = b[i + 1] - b[i];
-    int derivative_changes = 0;
-    double last = 0.0;
-    for (const double x : derivative) {
-      if (x == 0.0) continue;
-      if (last != 0.0 && (x < 0) != (last < 0)) ++derivative_changes;
-      last = x;
-    }
+    const int derivative_changes = signChanges(derivative);
     if (derivative_changes == 0) {  // p monotone: a root iff it changes sign
       rootIfSignChange(interval.lo, interval.hi, b[0], b[N]);
       continue;
