@@ -553,6 +553,16 @@ std::optional<DiskSignedDistanceResult<S>> penetrationIfIntersecting(
   return penetrationOfValidPair(r1, X_W1, r2, X_W2, true);
 }
 
+template <typename S>
+DiskSignedDistanceResult<S> penetrationOfIntersecting(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                                      const fcl::Transform3<S>& X_W2) {
+  return penetrationOfValidPair(r1, X_W1, r2, X_W2, true);
+}
+
+template DiskSignedDistanceResult<float> penetrationOfIntersecting(
+    float, const fcl::Transform3<float>&, float, const fcl::Transform3<float>&);
+template DiskSignedDistanceResult<double> penetrationOfIntersecting(
+    double, const fcl::Transform3<double>&, double, const fcl::Transform3<double>&);
 template std::optional<DiskSignedDistanceResult<float>> penetrationIfIntersecting(
     float, const fcl::Transform3<float>&, float, const fcl::Transform3<float>&);
 template std::optional<DiskSignedDistanceResult<double>> penetrationIfIntersecting(

@@ -32,6 +32,12 @@ template <typename S>
 std::optional<DiskSignedDistanceResult<S>> penetrationIfIntersecting(
     S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2);
 
+/// diskPenetration() of a valid pair already known to intersect as
+/// intersectDisks() decides (exactDiskDistance() answered `intersecting`).
+template <typename S>
+DiskSignedDistanceResult<S> penetrationOfIntersecting(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                                      const fcl::Transform3<S>& X_W2);
+
 /// Calls visit(w) for every direction of the candidate set of
 /// docs/penetration_depth.md section 2 for the pair (disk 1's frame, lengths
 /// in scene sizes): the four normals and the directions of every rim pair

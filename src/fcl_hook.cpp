@@ -146,18 +146,24 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
   // Same early exit as FCL's ShapeShapeDistance.
   if (distanceIsSettled(result)) return result.min_distance;
   ++t_disk_answers;
+  const bool exact =
+      g_method.load(std::memory_order_relaxed) != DiskDistanceMethod::almohamad_selim;
   const DiskDistanceResult<S> answer =
-      g_method.load(std::memory_order_relaxed) == DiskDistanceMethod::almohamad_selim
-          ? almohamadSelimDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2)
-          : exactDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2);
+      exact ? exactDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2)
+            : almohamadSelimDiskDistance(disk1.radius, X_W1, disk2.radius, X_W2);
   if (std::isnan(answer.distance)) return answerNoDistance<S>(&disk1, &disk2, result);
   if (request.enable_signed_distance && !(answer.distance > 0)) {
     // Overlap, signed: minus the penetration depth, with the deepest points
     // (p_W1 - p_W2 = PD * direction), as FCL's EPA reports them. Decided as
     // intersectDisks, and so collide(), decides: FCL's entry, for the indep
     // solver, re-asks collide() for a contact whenever the answer is negative.
+    // The exact solver's `intersecting` is that decision (the same test on
+    // the same pair), so it is not taken again.
     const auto penetration =
-        internal::penetrationIfIntersecting(disk1.radius, X_W1, disk2.radius, X_W2);
+        exact && answer.feature == DiskPairFeature::intersecting
+            ? std::optional(internal::penetrationOfIntersecting(disk1.radius, X_W1,
+                                                                 disk2.radius, X_W2))
+            : internal::penetrationIfIntersecting(disk1.radius, X_W1, disk2.radius, X_W2);
     if (penetration && isReportableDepth(-penetration->signed_distance)) {
       keepIfNearer(result, penetration->signed_distance, &disk1, &disk2, penetration->p_W1,
                    penetration->p_W2);
