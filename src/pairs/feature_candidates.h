@@ -44,10 +44,9 @@ struct EdgeArcsThatCanBeatBound {
   const Vec3 &s, &e;
   double offset;
   const Search& search;
-  /// Never halved for the test: the degree-2 search is cheap, and dropping
-  /// only whole charts measured faster (box penetration depths, the report's
-  /// pool: 4.5 us against 5.2 us with arcs halved down to kPrunedArcWidth).
-  static constexpr double split_wider_than = 2 * trig_roots::kPi;
+  /// Arcs are halved for the test down to kPrunedArcWidth, as for disk-disk
+  /// (their coefficients are formed only for the arcs that pass it).
+  static constexpr double split_wider_than = kPrunedArcWidth;
   bool operator()(double cos_theta, double sin_theta, double radius) const {
     const Vec3 from_s = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v) - s;
     const double from_line = (from_s - from_s.dot(e) * e).norm() - disk.r * radius;
