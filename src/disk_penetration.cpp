@@ -459,6 +459,23 @@ void forEachDiskPairPenetrationCandidate(const PairInFrame1& unit_pair,
     search.consider(kink);
   }
   considerRimCandidates(unit_pair, search, bound);
+  // The polished directions too (consider() passes them on): where F is the
+  // caller's, they are its minimiser to rounding.
+  search.polishBestRimPair();
+  search.polishBestDirection();
+  // Rim 2 next to disk 1's axis: the rim pairs there also from rim 1, as
+  // penetrationOfValidPair does (its directions mapped back to frame 1).
+  if (search.nearestRimToAxis() < kNearAxis) {
+    const Mat3& R = unit_pair.R;
+    const std::function<void(const Vec3&)> visit_in_frame1 = [&](const Vec3& w) {
+      visit(R * w);
+    };
+    const PairInFrame1 from_disk2 = unit_pair.swapped();
+    PenetrationSearch other(from_disk2, &visit_in_frame1);
+    considerRimCandidates(from_disk2, other, bound);
+    other.polishBestRimPair();
+    other.polishBestDirection();
+  }
 }
 
 }  // namespace internal

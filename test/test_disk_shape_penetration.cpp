@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <iostream>
 #include <limits>
 #include <memory>
 #include <string>
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "disk_shape_penetration_draws.h"
+#include "reference_penetration.h"
 #include "reference_shape_penetration.h"
 #include "test_random.h"
 
@@ -253,6 +255,57 @@ TEST(DiskShapePenetration, CornerOnTheRimFoundByFuzzing) {
   const double scale = double(r) + 2e-4 + X_WS.translation().cast<double>().norm();
   const auto answer = fcl_disk::signedDiskShapeDistance(r, X_WD, frustum, X_WS);
   EXPECT_NEAR(double(answer.signed_distance), 0.0, kDepthRelative<float> * scale);
+}
+
+/// A disk in a perturbed symmetric chain link with the top cap of a thin
+/// cylinder (height 1e-6 of its radius): upright on the cap's rim through the
+/// cap's centre, turned by 1e-8..1e-1 rad and moved by 1e-9..1e-2 of the
+/// radius; equal radii and ratios 0.2..5. The cap's rim passes next to the
+/// disk's axis, where the disk-disk candidates must be placed from the other
+/// rim too (docs/penetration_depth.md, sections 2 and 7). The cylinder holds
+/// the cap and adds h |w.n| at most along the cap's minimiser w, so its depth
+/// lies in [PD_cap, PD_cap + h |w.n|], PD_cap from the disk-disk long-double
+/// reference (test/reference_penetration.h).
+TEST(DiskShapePenetration, ThinCylinderCapInAPerturbedChainLink) {
+  Random rng(20240601 + 81);
+  int checked = 0;
+  double worst = 0;
+  while (checked < 300) {
+    const double rc = rng.uniform(0.3, 2.0);
+    const double r = checked % 2 == 0 ? rc : rc * rng.logUniform(0.2, 5.0);
+    const double h = 1e-6 * rc;
+    const fcl::Cylinderd cylinder(rc, h);
+    fcl::Transform3d X_WS = fcl::Transform3d::Identity();
+    X_WS.linear() = rng.rotation();
+    X_WS.translation() = rng.inBall(1.0);
+    fcl::Transform3d X_WC = X_WS;  // the top cap
+    X_WC.translation() = X_WS * Vd(0, 0, h / 2);
+    Eigen::Matrix3d upright;  // in-plane axes: the cap's x and normal
+    upright.col(0) = X_WC.linear().col(0);
+    upright.col(1) = X_WC.linear().col(2);
+    upright.col(2) = -X_WC.linear().col(1);
+    fcl::Transform3d X_WD = fcl::Transform3d::Identity();
+    X_WD.linear() =
+        Eigen::AngleAxisd(rng.logUniform(1e-8, 1e-1), rng.unitVector()).toRotationMatrix() *
+        upright;
+    X_WD.translation() = X_WC.translation() + r * X_WC.linear().col(0) +
+                         rng.logUniform(1e-9, 1e-2) * rc * rng.unitVector();
+    const auto answer = fcl_disk::signedDiskShapeDistance(r, X_WD, cylinder, X_WS);
+    if (!(answer.signed_distance < 0)) continue;
+    const auto cap = fcl_disk_penetration_reference::referencePenetration(r, X_WD, rc, X_WC);
+    if (!(cap.pd > 0)) continue;
+    ++checked;
+    const double lo = double(cap.pd);
+    const double hi = lo + h * double(std::abs(cap.w.dot(toReal(X_WC.linear().col(2)))));
+    const double depth = -answer.signed_distance;
+    const double scale = r + rc + h + (X_WD.translation() - X_WS.translation()).norm();
+    const double error = std::max({lo - depth, depth - hi, 0.0}) / scale;
+    EXPECT_LE(error, kDepthRelative<double>)
+        << "case " << checked << ": depth " << depth << " outside [" << lo << ", " << hi << "]";
+    worst = std::max(worst, error);
+  }
+  std::cout << "  300 thin cylinders: largest distance outside the cap's bounds / scale " << worst
+            << "\n";
 }
 
 TEST(DiskShapePenetration, HandMadeCases) {
