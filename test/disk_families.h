@@ -98,13 +98,25 @@ enum class Family {
   /// 0.75) at separations 1e-12..1e6 (log-uniform), known. In float,
   /// separations below ~1e-6 are below the pose rounding.
   separation_scale,
+  /// A tiny disk next to a large one's rim: r_small / r_large = 1e-9..1e-6
+  /// (log-uniform; the small disk in slot 2 or 1, alternately), the KKT rim-rim
+  /// construction with d = 1e-3..10 times the small radius (known), the
+  /// separation psi = -1.4..1.4 rad out of the large disk's plane, random
+  /// orientation of the small disk.
+  tiny_next_to_rim,
+  /// Nearly parallel disks side by side, rims almost touching: tilt 1e-8..1e-2
+  /// rad (log-uniform) between the normals, the KKT rim-rim construction with
+  /// the separation within 0.1 rad of disk 1's plane and a rim gap of 1e-6..1
+  /// times the larger radius (known), radii 0.3..1.5.
+  side_by_side,
 };
 
 inline const std::vector<Family>& allFamilies() {
   static const std::vector<Family> families = {
       Family::random,      Family::near_parallel, Family::coplanar,     Family::coaxial,
       Family::touching,    Family::interlocked,   Family::perpendicular, Family::rim_rim,
-      Family::radius_ratio, Family::far_from_origin, Family::separation_scale};
+      Family::radius_ratio, Family::far_from_origin, Family::separation_scale,
+      Family::tiny_next_to_rim, Family::side_by_side};
   return families;
 }
 
@@ -121,6 +133,8 @@ inline const char* familyName(Family f) {
     case Family::radius_ratio: return "radius_ratio";
     case Family::far_from_origin: return "far_from_origin";
     case Family::separation_scale: return "separation_scale";
+    case Family::tiny_next_to_rim: return "tiny_next_to_rim";
+    case Family::side_by_side: return "side_by_side";
   }
   return "?";
 }
@@ -662,6 +676,34 @@ void makeSeparationScale(int i, Rng& rng, LocalPair* local, std::string* kind) {
   (void)rng;
 }
 
+template <typename S>
+void makeTinyNextToRim(int i, Rng& rng, LocalPair* local, std::string* kind) {
+  const Real r1 = roundedRadius<S>(rng.uniform(Real(0.5), Real(2)));
+  const Real r2 = roundedRadius<S>(r1 * rng.logUniform(Real(1e-9), Real(1e-6)));
+  const Real d = r2 * rng.logUniform(Real(1e-3), Real(10));
+  while (!rimRimPair(r1, r2, d, rng.angle(), rng.uniform(Real(-1.4), Real(1.4)), rng.rotation(),
+                     local)) {
+  }
+  if (i % 2 == 1) {  // the small disk in slot 1
+    std::swap(local->r1, local->r2);
+    std::swap(local->R1, local->R2);
+    std::swap(local->c1, local->c2);
+  }
+  *kind = "rim_rim";
+}
+
+template <typename S>
+void makeSideBySide(Rng& rng, LocalPair* local, std::string* kind) {
+  const Real r1 = roundedRadius<S>(rng.uniform(Real(0.3), Real(1.5)));
+  const Real r2 = roundedRadius<S>(rng.uniform(Real(0.3), Real(1.5)));
+  const Real tilt = rng.logUniform(Real(1e-8), Real(1e-2));
+  const Real d = std::max(r1, r2) * rng.logUniform(Real(1e-6), Real(1));
+  while (!rimRimPair(r1, r2, d, rng.angle(), rng.uniform(Real(-0.1), Real(0.1)),
+                     tiltedFrame(tilt, rng), local)) {
+  }
+  *kind = "rim_rim";
+}
+
 inline std::uint64_t familySeed(Family f, std::uint64_t seed) {
   // Different families draw different streams from the same user seed.
   return seed * 0x9E3779B97F4A7C15ULL + static_cast<std::uint64_t>(f) * 0xD1B54A32D192ED03ULL + 1;
@@ -696,6 +738,8 @@ std::vector<DiskPairCase<S>> makeFamily(Family f, int count, std::uint64_t seed)
       case Family::rim_rim: makeRimRim<S>(rng, &local); kind = "rim_rim"; break;
       case Family::radius_ratio: makeRadiusRatio<S>(i, rng, &local, &kind); break;
       case Family::separation_scale: makeSeparationScale<S>(i, rng, &local, &kind); break;
+      case Family::tiny_next_to_rim: makeTinyNextToRim<S>(i, rng, &local, &kind); break;
+      case Family::side_by_side: makeSideBySide<S>(rng, &local, &kind); break;
     }
     // Common rigid motion. Far from origin: up to 1e6 (log-uniform magnitude,
     // half of the cases at 0.5e6..1e6); otherwise a unit-scale offset.
