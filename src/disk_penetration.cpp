@@ -405,8 +405,8 @@ void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
 /// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
 /// which only changes the order of the kinks so that the tie-break is the
-/// caller's +n1 either way. `shares_point`: the disks are known to share a
-/// point (commonPoint found one); otherwise it is tested here.
+/// caller's +n1 either way. `shares_point`: the disks share a point (to the
+/// touching tolerance, as intersectDisks decides), which lets the search prune.
 Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped, bool shares_point) {
   PenetrationSearch search(pair);
   // Disk 2's kinks are where |P2 w| = sqrt((u.w)^2 + (v.w)^2) vanishes, along
@@ -437,8 +437,7 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped, bool sha
     return best > 0.0 ? best + internal::kPrunedCandidateSlack
                       : std::numeric_limits<double>::infinity();
   };
-  const bool prune = shares_point || internal::commonPoint(pair).has_value();
-  considerRimCandidates(pair, search, prune ? &bound : nullptr);
+  considerRimCandidates(pair, search, shares_point ? &bound : nullptr);
   search.polishBestRimPair();
   search.polishBestDirection();
   Penetration found = withWitnesses(pair, search.best());
@@ -557,7 +556,11 @@ template <typename S>
 DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                             const fcl::Transform3<S>& X_W2) {
   if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return nanSignedDistance<S>();
-  return penetrationOfValidPair(r1, X_W1, r2, X_W2, false);
+  // Decided as intersectDisks decides, so that the hook, which knows that
+  // decision already, answers bit for bit the same.
+  const bool shares_point =
+      internal::commonPoint(PairInFrame1::fromWorld(r1, X_W1, r2, X_W2)).has_value();
+  return penetrationOfValidPair(r1, X_W1, r2, X_W2, shares_point);
 }
 
 namespace internal {
