@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "disk_penetration_candidates.h"
 #include "fcl_disk/disk_penetration.h"
 #include "pair_in_frame1.h"
 
@@ -21,7 +22,8 @@ bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Trans
   if (contact) {
     const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
     contact->pos = (X_W1.translation().template cast<double>() + R_W1 * *common).template cast<S>();
-    const DiskSignedDistanceResult<S> penetration = diskPenetration(r1, X_W1, r2, X_W2);
+    const DiskSignedDistanceResult<S> penetration =
+        internal::penetrationOfIntersecting(r1, X_W1, r2, X_W2);
     contact->normal = penetration.direction;
     // A touching pair (common point within the tolerance) may have min F
     // slightly below 0: a separation of rounding size, depth 0.

@@ -566,14 +566,6 @@ DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1
 namespace internal {
 
 template <typename S>
-std::optional<DiskSignedDistanceResult<S>> penetrationIfIntersecting(
-    S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2) {
-  if (!isValidDiskPair(r1, X_W1, r2, X_W2)) return std::nullopt;
-  if (!commonPoint(PairInFrame1::fromWorld(r1, X_W1, r2, X_W2))) return std::nullopt;
-  return penetrationOfValidPair(r1, X_W1, r2, X_W2, true);
-}
-
-template <typename S>
 DiskSignedDistanceResult<S> penetrationOfIntersecting(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                                       const fcl::Transform3<S>& X_W2) {
   return penetrationOfValidPair(r1, X_W1, r2, X_W2, true);
@@ -582,10 +574,6 @@ DiskSignedDistanceResult<S> penetrationOfIntersecting(S r1, const fcl::Transform
 template DiskSignedDistanceResult<float> penetrationOfIntersecting(
     float, const fcl::Transform3<float>&, float, const fcl::Transform3<float>&);
 template DiskSignedDistanceResult<double> penetrationOfIntersecting(
-    double, const fcl::Transform3<double>&, double, const fcl::Transform3<double>&);
-template std::optional<DiskSignedDistanceResult<float>> penetrationIfIntersecting(
-    float, const fcl::Transform3<float>&, float, const fcl::Transform3<float>&);
-template std::optional<DiskSignedDistanceResult<double>> penetrationIfIntersecting(
     double, const fcl::Transform3<double>&, double, const fcl::Transform3<double>&);
 
 }  // namespace internal

@@ -1,10 +1,9 @@
-// Internal entries of the disk-disk penetration depth: for callers that decide
-// the overlap first (the hook, intersectDisks), and the candidate directions
+// Internal entries of the disk-disk penetration depth: for callers that decided
+// the overlap already (the hook, intersectDisks), and the candidate directions
 // for the disk-shape pairs whose shape contains disks (a cylinder's caps).
 #pragma once
 
 #include <functional>
-#include <optional>
 
 #include "fcl_disk/disk_penetration.h"
 #include "pair_in_frame1.h"
@@ -24,16 +23,10 @@ constexpr double kPrunedCandidateSlack = 1e-12;
 /// search 0.5 and 1 rad cost the same to 2%, 0.125 and 2 rad 8% more).
 constexpr double kPrunedArcWidth = 0.5;
 
-/// diskPenetration() of two disks that intersect as intersectDisks() decides
-/// (a common point to the touching tolerance); nullopt when they do not, or
-/// for invalid input. One overlap test serves both the decision and the
-/// search's pruning, which needs it.
-template <typename S>
-std::optional<DiskSignedDistanceResult<S>> penetrationIfIntersecting(
-    S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2);
-
 /// diskPenetration() of a valid pair already known to intersect as
-/// intersectDisks() decides (exactDiskDistance() answered `intersecting`).
+/// intersectDisks() decides (intersectDisks() found the common point, or
+/// exactDiskDistance() answered `intersecting`): the overlap test is not
+/// taken again.
 template <typename S>
 DiskSignedDistanceResult<S> penetrationOfIntersecting(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                                       const fcl::Transform3<S>& X_W2);

@@ -22,6 +22,7 @@
 #include <cstring>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <limits>
@@ -159,11 +160,12 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
     // solver, re-asks collide() for a contact whenever the answer is negative.
     // The exact solver's `intersecting` is that decision (the same test on
     // the same pair), so it is not taken again.
-    const auto penetration =
-        exact && answer.feature == DiskPairFeature::intersecting
-            ? std::optional(internal::penetrationOfIntersecting(disk1.radius, X_W1,
-                                                                 disk2.radius, X_W2))
-            : internal::penetrationIfIntersecting(disk1.radius, X_W1, disk2.radius, X_W2);
+    std::optional<DiskSignedDistanceResult<S>> penetration;
+    if (exact && answer.feature == DiskPairFeature::intersecting) {
+      penetration = internal::penetrationOfIntersecting(disk1.radius, X_W1, disk2.radius, X_W2);
+    } else if (intersectDisks(disk1.radius, X_W1, disk2.radius, X_W2)) {
+      penetration = diskPenetration(disk1.radius, X_W1, disk2.radius, X_W2);
+    }
     if (penetration && isReportableDepth(-penetration->signed_distance)) {
       keepIfNearer(result, penetration->signed_distance, &disk1, &disk2, penetration->p_W1,
                    penetration->p_W2);

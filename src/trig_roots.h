@@ -184,7 +184,7 @@ template <int N>
 using Bernstein = std::array<double, N + 1>;
 
 template <int N>
-Bernstein<N> toBernstein(const Polynomial<N>& p, double lo = -1.0, double hi = 1.0) {
+Bernstein<N> toBernstein(const Polynomial<N>& p, double lo, double hi) {
   // q(s) = p(lo + (hi - lo) s) by Horner's scheme on polynomials in s.
   const double width = hi - lo;
   Polynomial<N> q{};
@@ -381,7 +381,7 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
       stack[size++] = {{}, lo, mid, depth + 1, false};
       continue;
     }
-    if (!interval.has_b) interval.b = bernsteinOnDyadic<N>(p, interval.lo, interval.hi, interval.depth);
+    if (!interval.has_b) interval.b = bernsteinOnDyadic<N>(p, lo, hi, depth);
     const Bernstein<N>& b = interval.b;
     const int changes = signChanges(b);
     if (changes == 0) {
