@@ -20,19 +20,6 @@
 namespace fcl_disk {
 namespace internal {
 
-/// The disk of radius r and pose X_WD in the frame S of a shape with pose X_WS
-/// (double; the offset c_D - c_S is formed first, so a common translation costs
-/// only its rounding).
-template <typename S>
-DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
-  const Mat3 R_WS = X_WS.linear().template cast<double>();
-  const Mat3 R_WD = X_WD.linear().template cast<double>();
-  const Vec3 offset =
-      X_WD.translation().template cast<double>() - X_WS.translation().template cast<double>();
-  const Vec3 u = R_WS.transpose() * R_WD.col(0), v = R_WS.transpose() * R_WD.col(1);
-  return DiskInShape{R_WS.transpose() * offset, u, v, u.cross(v), double(radius)};
-}
-
 /// Whether every length of a shape is usable: finite, >= 0, within the range of
 /// disk lengths (kMaxDiskLength: squares stay finite).
 inline bool isValidShapeLength(double length) {
@@ -63,12 +50,6 @@ bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
   return isValidDiskRadius(radius) && isValidDiskPose(X_WD) && isValidDiskPose(X_WS);
 }
 
-/// A point of frame S in the world.
-template <typename S>
-Vec3 toWorldPoint(const fcl::Transform3<S>& X_WS, const Vec3& p_S) {
-  return X_WS.translation().template cast<double>() + X_WS.linear().template cast<double>() * p_S;
-}
-
 template <typename S>
 DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
                                    const DiskShapeSolution& solution) {
@@ -80,12 +61,6 @@ DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
   result.iterations = solution.iterations;
   return result;
 }
-
-/// The shortest separating translation among candidate directions (frame S).
-struct Separation {
-  double depth = std::numeric_limits<double>::infinity();
-  Vec3 direction;
-};
 
 /// Among the unit candidate directions w (the disk's normals and the shape's
 /// own, both signs), the one whose separating translation of the shape,
@@ -227,7 +202,11 @@ struct GenericDiskShapePair {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) {
       return nanDiskShapeResult<S>();
     }
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    return toWorld(X_WS, solveInShapeFrame(diskInShape(radius, X_WD, X_WS), shape));
+  }
+
+  /// distance() in the shape's frame, for a valid pair.
+  static DiskShapeSolution solveInShapeFrame(const DiskInShape& disk, const Shape& shape) {
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
@@ -239,13 +218,24 @@ struct GenericDiskShapePair {
       solution.q = solution.p;
       solution.distance = solution.lower_bound = 0.0;
     }
-    return toWorld(X_WS, solution);
+    return solution;
   }
 
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) return false;
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    FrameContact in_shape_frame;
+    if (!intersectInShapeFrame(diskInShape(radius, X_WD, X_WS), shape,
+                               contact ? &in_shape_frame : nullptr)) {
+      return false;
+    }
+    if (contact) *contact = contactInWorld<S>(X_WS, in_shape_frame.pos, in_shape_frame.separation);
+    return true;
+  }
+
+  /// intersect() in the shape's frame, for a valid pair.
+  static bool intersectInShapeFrame(const DiskInShape& disk, const Shape& shape,
+                                    FrameContact* contact) {
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
@@ -264,7 +254,8 @@ struct GenericDiskShapePair {
       if (!separation) {
         separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
       }
-      *contact = contactInWorld<S>(X_WS, 0.5 * (solution.p + solution.q), *separation);
+      contact->pos = 0.5 * (solution.p + solution.q);
+      contact->separation = *separation;
     }
     return true;
   }

@@ -110,6 +110,25 @@ struct DiskInShape {
   }
 };
 
+/// The disk of radius r and pose X_WD in the frame S of a shape with pose X_WS
+/// (double; the offset c_D - c_S is formed first, so a common translation costs
+/// only its rounding).
+template <typename S>
+DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
+  const Mat3 R_WS = X_WS.linear().template cast<double>();
+  const Mat3 R_WD = X_WD.linear().template cast<double>();
+  const Vec3 offset =
+      X_WD.translation().template cast<double>() - X_WS.translation().template cast<double>();
+  const Vec3 u = R_WS.transpose() * R_WD.col(0), v = R_WS.transpose() * R_WD.col(1);
+  return DiskInShape{R_WS.transpose() * offset, u, v, u.cross(v), double(radius)};
+}
+
+/// A point of frame S in the world.
+template <typename S>
+Vec3 toWorldPoint(const fcl::Transform3<S>& X_WS, const Vec3& p_S) {
+  return X_WS.translation().template cast<double>() + X_WS.linear().template cast<double>() * p_S;
+}
+
 /// What the solver is asked: the distance, or only whether the sets meet (which
 /// may stop as soon as either answer is proven).
 enum class SolverGoal { distance, intersection };
@@ -120,6 +139,19 @@ struct DiskShapeSolution {
   double distance{0};     ///< |q - p|; 0 with p == q when the sets meet.
   double lower_bound{0};  ///< the certificate, <= the true distance.
   int iterations{0};
+};
+
+/// The shortest separating translation among candidate directions (frame S).
+struct Separation {
+  double depth = std::numeric_limits<double>::infinity();
+  Vec3 direction;
+};
+
+/// The contact of an intersecting pair in the shape's frame S: a common point
+/// and the shortest separation found.
+struct FrameContact {
+  Vec3 pos{Vec3::Zero()};
+  Separation separation;
 };
 
 // ---------------------------------------------------------------------------

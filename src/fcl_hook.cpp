@@ -45,6 +45,8 @@
 #include "fcl_disk/fcl_templates.h"
 #include "disk_narrowphase.h"
 #include "disk_penetration_candidates.h"
+#include "mesh_distance.h"
+#include "octree_distance.h"
 
 namespace fcl_disk {
 namespace {
@@ -352,90 +354,36 @@ struct DiskMeshTraversal {
   static constexpr bool kAnswered = true;
   using S = typename BV::S;
   using Narrow = internal::DiskNarrowPhase<S>;
-  /// FCL's oriented bounding volumes (RSS, kIOS, OBBRSS) come with a distance
-  /// traversal that works in the mesh's frame (FCL's BVHShapeDistancer). For
-  /// the others FCL 0.7 has none that works: its generic one would copy and
-  /// rebuild the mesh in the world frame per query, links to an initialize()
-  /// it declares but never defines, and OBB and KDOP have no BV distance. Here
-  /// they share one traversal in the mesh's frame M: the disk posed there
-  /// (X_MD), each node's axis-aligned box in M against the disk's tight box in
-  /// M as the lower bound, the points mapped to the world at the end.
-  static constexpr bool kOriented = std::is_same<BV, fcl::RSS<S>>::value ||
-                                    std::is_same<BV, fcl::kIOS<S>>::value ||
-                                    std::is_same<BV, fcl::OBBRSS<S>>::value;
-
-  /// The distance between two boxes, in double: FCL's AABB::distance squares
-  /// the gaps in S, which in float overflows for gaps beyond 1e19 and then
-  /// prunes every node.
-  static S boxDistance(const fcl::AABB<S>& a, const fcl::AABB<S>& b) {
-    double squared = 0.0;
-    for (int i = 0; i < 3; ++i) {
-      const double gap = std::max({double(a.min_[i]) - double(b.max_[i]),
-                                   double(b.min_[i]) - double(a.max_[i]), 0.0});
-      squared += gap * gap;
-    }
-    return S(std::sqrt(squared));
-  }
-
-  struct MeshFrameDistanceNode
-      : fcl::detail::MeshShapeDistanceTraversalNode<BV, Disk<S>, Narrow> {
-    fcl::AABB<S> disk_box_M;
-    S BVTesting(int b1, int) const override {
-      if (this->enable_statistics) this->num_bv_tests++;
-      return boxDistance(axisAlignedBoxOf(this->model1->getBV(b1).bv), disk_box_M);
-    }
-  };
-
   static bool isTriangleModel(const CollisionGeometry<S>* mesh) {
     return static_cast<const fcl::BVHModel<BV>*>(mesh)->getModelType() == fcl::BVH_MODEL_TRIANGLES;
   }
 
-  static fcl::AABB<S> axisAlignedBoxOf(const fcl::AABB<S>& box) { return box; }
-  static fcl::AABB<S> axisAlignedBoxOf(const fcl::OBB<S>& obb) {
-    const fcl::Vector3<S> half = obb.axis.cwiseAbs() * obb.extent;
-    return fcl::AABB<S>(obb.To - half, obb.To + half);
-  }
-  template <std::size_t N>
-  static fcl::AABB<S> axisAlignedBoxOf(const fcl::KDOP<S, N>& kdop) {
-    // FCL's first three k-DOP directions are the axes.
-    return fcl::AABB<S>(fcl::Vector3<S>(kdop.dist(0), kdop.dist(1), kdop.dist(2)),
-                        fcl::Vector3<S>(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2)));
-  }
-
+  /// Distance: fcl_disk's best-first traversal in the mesh's frame M
+  /// (src/mesh_distance.h), the disk posed there, the points mapped to the
+  /// world. FCL's own distance traversals are not used: they bound nodes by
+  /// the distance between two volumes (the disk's and the node's) and visit
+  /// depth-first, and for AABB, OBB and k-DOP meshes FCL 0.7 has none that
+  /// works (its generic one copies and rebuilds the mesh in the world frame
+  /// per query, links to an initialize() it declares but never defines, and
+  /// OBB and k-DOP have no distance between volumes).
   static S distance(const CollisionGeometry<S>* mesh, const Transform3<S>& X_WM,
                     const Disk<S>& disk, const Transform3<S>& X_WD,
                     const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
     // A point cloud has no triangles to answer with: no answer (FCL's oriented
     // traversals would run on a node they left uninitialised and crash).
     if (!isTriangleModel(mesh)) return result.min_distance;
-    if constexpr (kOriented) {
-      return fcl::detail::BVHShapeDistancer<BV, Disk<S>, Narrow>::distance(
-          mesh, X_WM, &disk, X_WD, &kDiskNarrowPhase<S>, request, result);
-    } else {
-      if (request.isSatisfied(result)) return result.min_distance;
-      const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
-      const Transform3<S> X_MD = relativePose(X_WM, X_WD);
-      fcl::DistanceResult<S> in_mesh_frame;
-      MeshFrameDistanceNode node;
-      node.request = request;
-      node.result = &in_mesh_frame;
-      node.model1 = &model;
-      node.tf1.setIdentity();
-      node.model2 = &disk;
-      node.tf2 = X_MD;
-      node.nsolver = &kDiskNarrowPhase<S>;
-      node.vertices = model.vertices;
-      node.tri_indices = model.tri_indices;
-      fcl::computeBV(disk, X_MD, node.model2_bv);
-      fcl::computeBV(disk, X_MD, node.disk_box_M);
-      fcl::detail::distance(&node);
-      if (in_mesh_frame.min_distance < result.min_distance) {
-        result.update(in_mesh_frame.min_distance, mesh, &disk, in_mesh_frame.b1,
-                      fcl::DistanceResult<S>::NONE, X_WM * in_mesh_frame.nearest_points[0],
-                      X_WM * in_mesh_frame.nearest_points[1]);
-      }
-      return result.min_distance;
+    if (request.isSatisfied(result)) return result.min_distance;
+    const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
+    const internal::MeshDistanceAnswer answer = internal::diskMeshDistance(
+        internal::diskInShape(disk.radius, X_WD, X_WM), model, double(result.min_distance),
+        double(request.rel_err), double(request.abs_err));
+    if (answer.triangle >= 0) {
+      result.update(S(answer.distance), mesh, &disk, answer.triangle,
+                    fcl::DistanceResult<S>::NONE,
+                    internal::toWorldPoint(X_WM, answer.p_triangle).template cast<S>(),
+                    internal::toWorldPoint(X_WM, answer.p_disk).template cast<S>());
     }
+    return result.min_distance;
   }
 
   /// Collision: FCL's oriented traversals (OBB, RSS, kIOS, OBBRSS) as they
@@ -471,13 +419,14 @@ struct DiskMeshTraversal {
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_mesh_frame;
-    fcl::detail::MeshShapeCollisionTraversalNode<BV, Disk<S>, Narrow> node;
+    const internal::DiskInFrameNarrowPhase<S> narrow(internal::diskInShape(disk.radius, X_WD, X_WM));
+    fcl::detail::MeshShapeCollisionTraversalNode<BV, Disk<S>, internal::DiskInFrameNarrowPhase<S>> node;
     const Transform3<S> X_MD = relativePose(X_WM, X_WD);
     node.model1 = &model;
     node.tf1.setIdentity();
     node.model2 = &disk;
-    node.tf2 = X_MD;
-    node.nsolver = &kDiskNarrowPhase<S>;
+    node.tf2 = X_MD;  // the volumes' test; the leaves use `narrow`'s disk
+    node.nsolver = &narrow;
     fcl::computeBV(disk, X_MD, node.model2_bv);
     node.vertices = model.vertices;
     node.tri_indices = model.tri_indices;
@@ -523,17 +472,18 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
   static constexpr bool kAnswered = true;
   using Narrow = internal::DiskNarrowPhase<S>;
 
+  /// Distance: fcl_disk's best-first traversal in O (src/octree_distance.h).
   static S distance(const CollisionGeometry<S>* octree, const Transform3<S>& X_WO,
                     const Disk<S>& disk, const Transform3<S>& X_WD,
                     const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
-    fcl::DistanceResult<S> in_octree_frame;
-    fcl::detail::OcTreeShapeDistance<Disk<S>, Narrow>(octree, Transform3<S>::Identity(), &disk,
-                                                      relativePose(X_WO, X_WD), &kDiskNarrowPhase<S>,
-                                                      request, in_octree_frame);
-    if (in_octree_frame.min_distance < result.min_distance) {
-      result.update(in_octree_frame.min_distance, octree, &disk, in_octree_frame.b1,
-                    fcl::DistanceResult<S>::NONE, X_WO * in_octree_frame.nearest_points[0],
-                    X_WO * in_octree_frame.nearest_points[1]);
+    if (request.isSatisfied(result)) return result.min_distance;
+    const internal::OcTreeDistanceAnswer answer = internal::diskOcTreeDistance(
+        internal::diskInShape(disk.radius, X_WD, X_WO), *static_cast<const fcl::OcTree<S>*>(octree),
+        double(result.min_distance), double(request.rel_err), double(request.abs_err));
+    if (answer.found) {
+      result.update(S(answer.distance), octree, &disk, answer.cell, fcl::DistanceResult<S>::NONE,
+                    internal::toWorldPoint(X_WO, answer.p_cell).template cast<S>(),
+                    internal::toWorldPoint(X_WO, answer.p_disk).template cast<S>());
     }
     return result.min_distance;
   }
@@ -557,9 +507,10 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_octree_frame;
-    fcl::detail::OcTreeShapeCollide<Disk<S>, Narrow>(octree, Transform3<S>::Identity(), &disk,
-                                                     relativePose(X_WO, X_WD), &kDiskNarrowPhase<S>,
-                                                     room_left, in_octree_frame);
+    const internal::DiskInFrameNarrowPhase<S> narrow(internal::diskInShape(disk.radius, X_WD, X_WO));
+    fcl::detail::OcTreeShapeCollide<Disk<S>, internal::DiskInFrameNarrowPhase<S>>(
+        octree, Transform3<S>::Identity(), &disk, relativePose(X_WO, X_WD), &narrow, room_left,
+        in_octree_frame);
     for (std::size_t i = 0; i < in_octree_frame.numContacts(); ++i) {
       fcl::Contact<S> contact = in_octree_frame.getContact(i);
       if (request.enable_contact) {
@@ -583,12 +534,13 @@ template <int NodeType, typename S>
 constexpr bool kHasDiskEnvironment = DiskEnvironment<NodeType, S>::kAnswered;
 
 /// Whether a pair of a Disk and a mesh or octree describes a query: the disk's
-/// pose and radius are a disk's and the other pose is finite (FCL's traversal
-/// would run GJK-free but on NaN boxes). Otherwise the answer is NaN / no contact.
+/// pose and radius are a disk's and the other pose is a rigid one, by the rule
+/// for disk poses (finite, rotation orthonormal). Otherwise the answer is NaN /
+/// no contact.
 template <typename S>
 bool isDiskEnvironmentPair(const Disk<S>& disk, const Transform3<S>& X_WD,
                            const Transform3<S>& X_WE) {
-  return isValidDiskPose(X_WD) && isValidDiskRadius(disk.radius) && X_WE.matrix().allFinite();
+  return isValidDiskPose(X_WD) && isValidDiskRadius(disk.radius) && isValidDiskPose(X_WE);
 }
 
 /// Distance between a Disk and a mesh or octree (node type EnvType), in FCL's

@@ -3,6 +3,11 @@
 // reference_disk_shape.h, on the configuration families of
 // disk_shape_families.h (double and float); and of the reference itself against
 // hand-derived closed forms and the distances fixed by construction.
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/narrowphase/collision_object.h>
+#include <fcl/narrowphase/distance.h>
+#include <fcl_disk/disk.h>
 #include <fcl_disk/disk_shape_distance.h>
 
 #include <gtest/gtest.h>
@@ -215,6 +220,25 @@ std::vector<Referenced<Shape>> referenced(const std::vector<DiskShapeCase<Shape>
   return out;
 }
 
+/// fcl::distance between the disk and a mesh made of `triangle` alone (an
+/// OBBRSS model, at pose X_WS).
+template <typename S>
+fcl::DistanceResult<S> oneTriangleMeshDistance(Real radius, const fcl::Transform3<S>& X_WD,
+                                               const fcl::TriangleP<S>& triangle,
+                                               const fcl::Transform3<S>& X_WS) {
+  auto mesh = std::make_shared<fcl::BVHModel<fcl::OBBRSS<S>>>();
+  mesh->beginModel();
+  mesh->addTriangle(triangle.a, triangle.b, triangle.c);
+  mesh->endModel();
+  const fcl::CollisionObject<S> disk(std::make_shared<fcl_disk::Disk<S>>(S(radius)), X_WD);
+  const fcl::CollisionObject<S> leaf(mesh, X_WS);
+  fcl::DistanceRequest<S> request;
+  request.enable_nearest_points = true;
+  fcl::DistanceResult<S> result;
+  fcl::distance(&disk, &leaf, request, result);
+  return result;
+}
+
 // ---- checks -------------------------------------------------------------------
 
 /// The reference against the construction and its own certificate (double cases).
@@ -254,6 +278,8 @@ void checkSolver(const std::vector<Referenced<Shape>>& cases) {
   FailureLog pair_log(type + " |p_W_shape - p_W_disk| == distance");
   FailureLog bound_log(type + " lower_bound <= reference distance");
   FailureLog intersect_log(type + " diskShapeIntersect vs reference");
+  FailureLog mesh_log(type + " one-triangle mesh: fcl::distance vs reference");
+  FailureLog mesh_points_log(type + " one-triangle mesh: nearest points on their shapes, |p - q| == distance");
   for (const auto& rc : cases) {
     const auto& c = rc.c;
     const ref::Result& r = rc.reference;
@@ -286,6 +312,25 @@ void checkSolver(const std::vector<Referenced<Shape>>& cases) {
     if (!(double(got.lower_bound) <= expected + tol))
       bound_log.add("lower_bound " + str(got.lower_bound) + " exceeds the distance by " +
                     str((double(got.lower_bound) - expected) / scale) + " * scale" + context());
+    if constexpr (std::is_same<Shape, ref::TriangleP>::value) {
+      // The same triangle as the one leaf of a mesh, through fcl::distance:
+      // the traversal's closed forms and certificates (src/environment_bounds.h)
+      // answer some configurations without the solver.
+      const auto leaf = oneTriangleMeshDistance<S>(c.radius, X_WD, shape, X_WS);
+      const double leaf_d = double(leaf.min_distance);
+      if (!(std::fabs(leaf_d - expected) <= tol))
+        mesh_log.add("got " + str(leaf_d) + ", error " + str((leaf_d - expected) / scale) +
+                     " * scale" + context());
+      const V3 leaf_q = leaf.nearest_points[0].template cast<Real>();  // the mesh is o1
+      const V3 leaf_p = leaf.nearest_points[1].template cast<Real>();
+      const double leaf_off_disk = double(ref::distanceToDisk(leaf_p, rc.disk));
+      const double leaf_off_shape = double(ref::distanceToShape(leaf_q, c.shape));
+      if (!(leaf_off_disk <= tol + world && leaf_off_shape <= tol + world &&
+            std::fabs(double((leaf_q - leaf_p).norm()) - leaf_d) <= tol + 2 * world))
+        mesh_points_log.add("disk point " + str(leaf_p) + " is " + str(leaf_off_disk) +
+                            " from the disk, triangle point " + str(leaf_q) + " is " +
+                            str(leaf_off_shape) + " from the triangle" + context());
+    }
     const bool apart = expected > kClearlyApartRelative * scale;
     const bool deep_inside = c.family == fam::familyName(Family::inside);
     if (!is_float && (apart || deep_inside)) {
@@ -364,6 +409,44 @@ INSTANTIATE_TEST_SUITE_P(AllPairs, DiskShapeAccuracy, ::testing::ValuesIn(allPar
                            return std::string(kindName(info.param.kind)) + "_" +
                                   fam::familyName(info.param.family);
                          });
+
+// ---- a mesh leaf whose face normal is rounding noise --------------------------
+
+/// A triangle whose third vertex lies on the line of the other two (to the
+/// rounding of its coordinates) as the one leaf of a mesh: its cross product
+/// is rounding noise, so its "face normal" is not perpendicular to it, and a
+/// face certificate built on that normal would claim a distance larger than
+/// the true one (fuzz_disk_environment: regression-sliver-face-certificate).
+/// The leaf's answer must be the reference's.
+TEST(MeshLeaf, CollinearTriangleMatchesReference) {
+  const auto rotation = [](std::initializer_list<double> column_major) {
+    M3 R;
+    int i = 0;
+    for (const double x : column_major) R(i % 3, i / 3) = Real(x), ++i;
+    return R;
+  };
+  const M3 R_D = rotation({0.11415046763783825, 0.44970740660628905, -0.88585152208567586,
+                           0.47010051683131787, 0.76108218581127429, 0.44694452733606749,
+                           0.87520007701838709, -0.46745818517187049, -0.12452979684730305});
+  const V3 t_D(-1.0072556649118791, -1.098901350423438, -1.2650720988784618);
+  const Real radius = 0.20011749446860455;
+  ref::TriangleP triangle;
+  triangle.R = rotation({-0.93726937521191711, -0.13489664495390449, 0.32144830606186553,
+                         -0.27055498342829165, -0.29999435606256653, -0.91476958151915111,
+                         0.21983202503725288, -0.94435495525294211, 0.24467856313382735});
+  triangle.t = V3(-0.17649347676813915, -0.32726787212939651, -0.29499504081788358);
+  triangle.a = V3(-0.38435950255588613, 0.26521705958648045, -0.59230945296406501);
+  triangle.b = V3(0.78945601586938285, 0.57232013427939266, 0.31230640115968566);
+  triangle.c = V3(0.26694825202560585, 0.43561744266511587, -0.090370850637034247);
+  const ref::Result reference =
+      ref::referenceDistance(ref::makeDisk(radius, R_D, t_D), triangle);
+  const auto got = oneTriangleMeshDistance<double>(radius, toPose<double>(R_D, t_D),
+                                                   toFcl<double>(triangle),
+                                                   toPose<double>(triangle.R, triangle.t));
+  EXPECT_LE(std::fabs(double(got.min_distance) - double(reference.distance)),
+            kDoubleRelative * double(reference.scale))
+      << "mesh leaf " << str(got.min_distance) << ", reference " << str(reference.distance);
+}
 
 // ---- the reference against hand-derived closed forms ---------------------------
 

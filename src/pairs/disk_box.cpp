@@ -2,6 +2,7 @@
 // box frame) and support (a vertex). docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
+#include "../leaf_solvers.h"
 
 #include <vector>
 
@@ -98,6 +99,15 @@ struct BoxTraits {
 
 template <typename S>
 struct DiskShapePair<fcl::Box<S>> : GenericDiskShapePair<S, fcl::Box<S>, BoxTraits<S>> {};
+
+DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half) {
+  return DiskShapePair<fcl::Box<double>>::solveInShapeFrame(disk, fcl::Box<double>(2.0 * half));
+}
+
+bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact) {
+  return DiskShapePair<fcl::Box<double>>::intersectInShapeFrame(disk, fcl::Box<double>(2.0 * half),
+                                                               contact);
+}
 
 }  // namespace internal
 }  // namespace fcl_disk

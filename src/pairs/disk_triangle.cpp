@@ -4,7 +4,9 @@
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 #include "polygon_projection.h"
+#include "../leaf_solvers.h"
 
+#include <limits>
 #include <vector>
 
 namespace fcl_disk {
@@ -80,6 +82,24 @@ struct TriangleTraits {
 template <typename S>
 struct DiskShapePair<fcl::TriangleP<S>>
     : GenericDiskShapePair<S, fcl::TriangleP<S>, TriangleTraits<S>> {};
+
+DiskShapeSolution solveDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b,
+                                    const Vec3& c) {
+  const fcl::TriangleP<double> triangle(a, b, c);
+  if (!TriangleTraits<double>::valid(triangle)) {
+    DiskShapeSolution nan;
+    nan.distance = nan.lower_bound = std::numeric_limits<double>::quiet_NaN();
+    return nan;
+  }
+  return DiskShapePair<fcl::TriangleP<double>>::solveInShapeFrame(disk, triangle);
+}
+
+bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b, const Vec3& c,
+                           FrameContact* contact) {
+  const fcl::TriangleP<double> triangle(a, b, c);
+  return TriangleTraits<double>::valid(triangle) &&
+         DiskShapePair<fcl::TriangleP<double>>::intersectInShapeFrame(disk, triangle, contact);
+}
 
 }  // namespace internal
 }  // namespace fcl_disk

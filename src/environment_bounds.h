@@ -1,0 +1,381 @@
+// Internal: cheap lower bounds on the distance from a disk to a box or a
+// triangle, and the exact distance where a closed form holds, for the
+// traversals of meshes and octrees (src/mesh_distance.h, src/octree_distance.h).
+// Derivation: docs/meshes_and_octrees.md, "Distance traversal".
+//
+// Frame: the environment's (a mesh's frame M, an octree's frame O); the disk is
+// a DiskInShape there (centre c, in-plane axes u, v, normal n, radius r).
+// Units: lengths of that frame. Everything is in double.
+//
+// For a point x write a(x) = n.(x - c) (height over the disk's plane) and
+// rho(x) = |(u.(x - c), v.(x - c))| (distance from the disk's axis). The disk
+// point nearest x is x's foot on the plane, clamped to the rim, so
+//   dist(x, disk)^2 = a(x)^2 + max(rho(x) - r, 0)^2,
+// and over a set X, with a_min = min |a| and rho_min = min rho over X,
+//   dist(X, disk) >= sqrt(a_min^2 + max(rho_min - r, 0)^2)        (1)
+// (both minima taken separately). Equality holds when every point of X
+// projects into the disk (rho <= r on X): then dist(X, disk) = a_min, reached
+// at a vertex of a polytope X if a keeps one sign on it, and 0 at a point where
+// a crosses 0 otherwise.
+//
+// Guarantee: each bound is below the true distance by at least its rounding
+// pad (kEnvironmentBoundPad of the magnitudes involved), so a traversal that
+// prunes a volume whose bound is >= its best distance loses at most that pad.
+// Degenerate input: zero extents and zero-area triangles are sets like any
+// other (a zero-area triangle's projected "inside" test can only report 0, a
+// valid bound); NaN coordinates give a bound of 0 (never prune on NaN).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "disk_shape_solver.h"
+
+namespace fcl_disk {
+namespace internal {
+
+/// The rounding pad of the bounds, relative to the largest magnitude in the
+/// computation (|c|, r, and the box's centre and extents or the triangle's
+/// vertices): each bound is ~30 roundings of terms no larger than that, each at
+/// most one ulp of it; 64 ulps covers them twice over. A volume fitted in float
+/// (FCL's BVs of a float mesh) contains its triangles only to float rounding, so
+/// the traversals scale the pad by that type's epsilon instead.
+constexpr double kEnvironmentBoundPadUlps = 64.0;
+
+/// An oriented box in the environment's frame: centre o, orthonormal axes (the
+/// columns of `axes`), half-extents e >= 0; axis-aligned boxes leave `axes`
+/// unused.
+struct OrientedBox {
+  Vec3 o;
+  Mat3 axes;
+  Vec3 e;
+};
+
+/// A lower bound on dist(box, disk), unpadded: the largest of
+///  * (1), with a_min from the box's extent along n, and rho_min >= rho(o)
+///    minus the box's extent along the in-plane direction from o's foot
+///    towards the axis (the box's projection is the zonogon with generators
+///    e_k (u.A_k, v.A_k));
+///  * dist(c, box) - r (the disk lies in the ball of radius r about c);
+///  * dist(o, disk) minus the box's extent along the direction from o's
+///    nearest disk point to o (separation along that direction).
+/// `R` maps a vector's coordinates in the environment's frame to the box's
+/// (A^T); Identity for an axis-aligned box.
+template <typename Rotation>
+double diskBoxLowerBound(const DiskInShape& disk, const Vec3& o, const Rotation& R,
+                         const Vec3& e) {
+  const Vec3 d = o - disk.c;
+  const Vec3 d_box = R * d, n_box = R * disk.n, u_box = R * disk.u, v_box = R * disk.v;
+  const double a_o = disk.n.dot(d), x = disk.u.dot(d), y = disk.v.dot(d);
+  const double a_min = std::max(std::abs(a_o) - e.dot(n_box.cwiseAbs()), 0.0);
+  const double rho = std::sqrt(x * x + y * y);
+  const double rim_gap = std::max(rho - disk.r, 0.0);
+  // In-plane towards the axis, and from o's nearest disk point to o.
+  double rho_gap = 0.0;
+  Vec3 from_disk_box = d_box;
+  if (rim_gap > 0.0) {
+    const double inverse_rho = 1.0 / rho;
+    const Vec3 toward_axis_box = (x * inverse_rho) * u_box + (y * inverse_rho) * v_box;
+    rho_gap = std::max(rim_gap - e.dot(toward_axis_box.cwiseAbs()), 0.0);
+    from_disk_box -= disk.r * toward_axis_box;
+  } else {
+    from_disk_box -= x * u_box + y * v_box;
+  }
+  const double plane_and_axis_squared = a_min * a_min + rho_gap * rho_gap;
+  const double centre_distance = std::sqrt(a_o * a_o + rim_gap * rim_gap);
+  const double along = centre_distance > 0.0
+                           ? centre_distance - e.dot(from_disk_box.cwiseAbs()) / centre_distance
+                           : 0.0;
+  const double ball = (d_box.cwiseAbs() - e).cwiseMax(0.0).norm() - disk.r;
+  return std::max({std::sqrt(plane_and_axis_squared), ball, along});
+}
+
+inline double diskBoxLowerBound(const DiskInShape& disk, const OrientedBox& box) {
+  return diskBoxLowerBound(disk, box.o, box.axes.transpose(), box.e);
+}
+inline double diskAlignedBoxLowerBound(const DiskInShape& disk, const Vec3& o, const Vec3& e) {
+  return diskBoxLowerBound(disk, o, Mat3::Identity(), e);
+}
+
+/// The largest magnitude a box bound is computed from, but for the disk's
+/// share r + |c| (diskBoundMagnitude).
+inline double boxBoundMagnitude(const Vec3& o, const Vec3& e) {
+  return o.cwiseAbs().maxCoeff() + e.maxCoeff();
+}
+inline double diskBoundMagnitude(const DiskInShape& disk) {
+  return disk.r + disk.c.cwiseAbs().maxCoeff();
+}
+
+/// A leaf (a triangle, a cell) against the disk: the certified distance with
+/// nearest points (`exact`), or a lower bound (unpadded) for the solver.
+struct LeafToDisk {
+  bool exact = false;
+  double distance = 0.0;
+  Vec3 p_disk{Vec3::Zero()}, p_leaf{Vec3::Zero()};  ///< exact only
+};
+
+/// The distance from the origin to the closed 2D triangle p0 p1 p2 (or a lower
+/// bound 0 for a degenerate one whose line passes through the origin).
+inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) {
+  const auto cross = [](const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); };
+  const double e0 = cross(p0, p1), e1 = cross(p1, p2), e2 = cross(p2, p0);
+  if ((e0 >= 0.0 && e1 >= 0.0 && e2 >= 0.0) || (e0 <= 0.0 && e1 <= 0.0 && e2 <= 0.0)) return 0.0;
+  double nearest_squared = std::numeric_limits<double>::infinity();
+  const Vec2* corners[3] = {&p0, &p1, &p2};
+  for (int i = 0; i < 3; ++i) {
+    const Vec2& a = *corners[i];
+    const Vec2 edge = *corners[(i + 1) % 3] - a;
+    const double length_squared = edge.squaredNorm();
+    const double t =
+        length_squared > 0.0 ? std::clamp(-a.dot(edge) / length_squared, 0.0, 1.0) : 0.0;
+    nearest_squared = std::min(nearest_squared, (a + t * edge).squaredNorm());
+  }
+  return std::sqrt(nearest_squared);
+}
+
+/// The triangle p0 p1 p2 (frame of the disk's DiskInShape) against the disk,
+/// without iterating (docs/meshes_and_octrees.md, "Distance traversal"):
+///  * every vertex projects into the disk: (1) is exact (the first vertex of
+///    least |a|; a crossing: the point of the first edge p0p1, p1p2, p2p0 whose
+///    heights change sign or vanish, as both points);
+///  * else the certificate of the generic solver, dist >= min_T w.y - h_K(w)
+///    for unit w (h_K(w) = w.c + r |(u.w, v.w)|), on two directions: from the
+///    vertex nearest the disk to its nearest disk point, and the triangle's
+///    normal m (towards the disk); the upper bounds are that vertex's distance
+///    and, when the disk's point deepest along -m lies over the triangle, its
+///    height over the face. They are exact when the nearest pair is a vertex
+///    and a disk point, or the face and a disk point; if the best upper bound
+///    is within kShapeGapTolerance of the scene of the best lower bound, that
+///    is the answer (the solver's own stopping test); else the lower bound,
+///    the larger of (1) and the certificates.
+/// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|.
+inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
+                                     const Vec3& p2, double scale) {
+  const Vec3* vertices[3] = {&p0, &p1, &p2};
+  double a[3];
+  Vec2 foot[3];
+  double rim_gap[3];  // max(rho - r, 0)
+  bool inside = true;
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 d = *vertices[i] - disk.c;
+    a[i] = disk.n.dot(d);
+    foot[i] = Vec2(disk.u.dot(d), disk.v.dot(d));
+    const double rho = foot[i].norm();
+    rim_gap[i] = std::max(rho - disk.r, 0.0);
+    inside &= rho <= disk.r;
+  }
+  const double lowest = std::min({a[0], a[1], a[2]}), highest = std::max({a[0], a[1], a[2]});
+  const bool crosses = !(lowest > 0.0) && !(highest < 0.0);
+  const double a_min = crosses ? 0.0 : std::min(std::abs(lowest), std::abs(highest));
+  LeafToDisk answer;
+  if (!std::isfinite(lowest) || !std::isfinite(highest)) return answer;  // bound 0
+  if (inside) {
+    answer.exact = true;
+    answer.distance = a_min;
+    if (!crosses) {
+      int k = 0;
+      for (int i = 1; i < 3; ++i) {
+        if (std::abs(a[i]) < std::abs(a[k])) k = i;
+      }
+      answer.p_leaf = *vertices[k];
+      answer.p_disk = disk.c + foot[k].x() * disk.u + foot[k].y() * disk.v;
+      return answer;
+    }
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      if (a[i] == 0.0) {
+        answer.p_leaf = *vertices[i];
+        break;
+      }
+      if ((a[i] < 0.0) != (a[j] < 0.0) || a[j] == 0.0) {
+        const double t = a[i] / (a[i] - a[j]);
+        answer.p_leaf = *vertices[i] + t * (*vertices[j] - *vertices[i]);
+        break;
+      }
+    }
+    answer.p_disk = answer.p_leaf;
+    return answer;
+  }
+  // (1), with rho_min the distance from the axis to the projected triangle.
+  const double rho_gap = std::max(originToTriangle2(foot[0], foot[1], foot[2]) - disk.r, 0.0);
+  double lower = std::sqrt(a_min * a_min + rho_gap * rho_gap);
+  const auto supportOfDisk = [&disk](const Vec3& w) {
+    const double along_u = disk.u.dot(w), along_v = disk.v.dot(w);
+    return w.dot(disk.c) + disk.r * std::sqrt(along_u * along_u + along_v * along_v);
+  };
+  // The vertex nearest the disk.
+  int k = 0;
+  double nearest_squared[3];
+  for (int i = 0; i < 3; ++i) {
+    nearest_squared[i] = a[i] * a[i] + rim_gap[i] * rim_gap[i];
+    if (nearest_squared[i] < nearest_squared[k]) k = i;
+  }
+  double upper = std::sqrt(nearest_squared[k]);
+  const double foot_length = foot[k].norm();
+  const double clamp = foot_length > disk.r ? disk.r / foot_length : 1.0;
+  Vec3 upper_disk = disk.c + (clamp * foot[k].x()) * disk.u + (clamp * foot[k].y()) * disk.v;
+  Vec3 upper_triangle = *vertices[k];
+  if (upper > 0.0) {
+    const Vec3 w = (upper_triangle - upper_disk) / upper;
+    lower = std::max(lower, std::min({w.dot(p0), w.dot(p1), w.dot(p2)}) - supportOfDisk(w));
+  }
+  // The face: m its unit normal turned towards c. The bound takes the largest
+  // m.p_i, so it holds when rounding leaves m off the normal of a sliver; the
+  // upper bound measures to a convex combination of the vertices, a point of
+  // the triangle whatever m is.
+  const Vec3 normal = (p1 - p0).cross(p2 - p0);
+  const double normal_squared = normal.squaredNorm();
+  if (normal_squared > 0.0) {
+    Vec3 m = normal / std::sqrt(normal_squared);
+    if (m.dot(disk.c - p0) < 0.0) m = -m;
+    const double mu = disk.u.dot(m), mv = disk.v.dot(m);
+    const double tilt = std::sqrt(mu * mu + mv * mv);
+    // The disk's point least along m (its centre when parallel).
+    const Vec3 deepest =
+        tilt > 0.0 ? Vec3(disk.c - (disk.r / tilt) * (mu * disk.u + mv * disk.v)) : disk.c;
+    const double height = m.dot(deepest) - std::max({m.dot(p0), m.dot(p1), m.dot(p2)});
+    if (height > 0.0) {
+      lower = std::max(lower, height);
+      // Barycentric coordinates of deepest's foot on the face.
+      const Vec3 from0 = deepest - p0, from1 = deepest - p1, from2 = deepest - p2;
+      const double w0 = (p2 - p1).cross(from1).dot(normal), w1 = (p0 - p2).cross(from2).dot(normal),
+                   w2 = (p1 - p0).cross(from0).dot(normal);
+      if (w0 >= 0.0 && w1 >= 0.0 && w2 >= 0.0) {
+        const Vec3 on_face = (w0 * p0 + w1 * p1 + w2 * p2) / (w0 + w1 + w2);
+        const double gap = (deepest - on_face).norm();
+        if (gap < upper) {
+          upper = gap;
+          upper_disk = deepest;
+          upper_triangle = on_face;
+        }
+      }
+    }
+  }
+  if (upper - lower <= kShapeGapTolerance * scale) {
+    answer.exact = true;
+    answer.distance = upper;
+    answer.p_disk = upper_disk;
+    answer.p_leaf = upper_triangle;
+    return answer;
+  }
+  answer.distance = lower > 0.0 ? lower : 0.0;  // NaN: 0
+  return answer;
+}
+
+/// The axis-aligned box centre o, half-extents h (frame of the disk's
+/// DiskInShape) against the disk, as triangleToDisk: exact by (1) when every
+/// corner projects into the disk (the first corner of least |a| in the order
+/// x fastest, - before +; a crossing: the point where a vanishes on the segment
+/// from the lowest to the highest corner); else the certificate on the
+/// direction from the nearest corner to its nearest disk point, and on the
+/// normals of the three faces turned towards c (upper bounds: that corner's
+/// distance; a face's height over the disk when the disk's point deepest
+/// towards it lies over the face), the answer when within kShapeGapTolerance
+/// of the scene; else the largest lower bound, with diskBoxLowerBound's.
+/// `scale`: the solver's, r + |h| + |c - o|.
+inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const Vec3& h,
+                                   double scale) {
+  LeafToDisk answer;
+  const Vec3 d = o - disk.c;
+  const double a_o = disk.n.dot(d), x_o = disk.u.dot(d), y_o = disk.v.dot(d);
+  // Corner k = o + (s_0 h_0, s_1 h_1, s_2 h_2), s_i = bit i of k ? + : -.
+  const Vec3 a_step = disk.n.cwiseProduct(h), x_step = disk.u.cwiseProduct(h),
+             y_step = disk.v.cwiseProduct(h);
+  double a[8], x[8], y[8];
+  bool inside = true;
+  int lowest = 0, highest = 0, nearest = 0;
+  double nearest_squared = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 8; ++k) {
+    a[k] = a_o, x[k] = x_o, y[k] = y_o;
+    for (int i = 0; i < 3; ++i) {
+      const double side = (k >> i) & 1 ? 1.0 : -1.0;
+      a[k] += side * a_step[i];
+      x[k] += side * x_step[i];
+      y[k] += side * y_step[i];
+    }
+    const double rho = std::sqrt(x[k] * x[k] + y[k] * y[k]);
+    inside &= rho <= disk.r;
+    const double rim_gap = std::max(rho - disk.r, 0.0);
+    const double squared = a[k] * a[k] + rim_gap * rim_gap;
+    if (squared < nearest_squared) nearest_squared = squared, nearest = k;
+    if (a[k] < a[lowest]) lowest = k;
+    if (a[k] > a[highest]) highest = k;
+  }
+  if (!std::isfinite(a[lowest]) || !std::isfinite(a[highest]) ||
+      !std::isfinite(nearest_squared)) {
+    return answer;  // bound 0
+  }
+  const auto corner = [&](int k) {
+    return Vec3(o.x() + ((k & 1) ? h.x() : -h.x()), o.y() + ((k & 2) ? h.y() : -h.y()),
+                o.z() + ((k & 4) ? h.z() : -h.z()));
+  };
+  const bool crosses = !(a[lowest] > 0.0) && !(a[highest] < 0.0);
+  if (inside) {
+    answer.exact = true;
+    if (crosses) {
+      const double t = a[highest] > a[lowest] ? a[highest] / (a[highest] - a[lowest]) : 0.0;
+      answer.p_leaf = corner(highest) + t * (corner(lowest) - corner(highest));
+      answer.p_disk = answer.p_leaf;
+      answer.distance = 0.0;
+      return answer;
+    }
+    const int k = a[lowest] > 0.0 ? lowest : highest;
+    answer.distance = std::abs(a[k]);
+    answer.p_leaf = corner(k);
+    answer.p_disk = disk.c + x[k] * disk.u + y[k] * disk.v;
+    return answer;
+  }
+  double lower = diskAlignedBoxLowerBound(disk, o, h);
+  const auto supportOfDisk = [&disk](const Vec3& w) {
+    const double along_u = disk.u.dot(w), along_v = disk.v.dot(w);
+    return w.dot(disk.c) + disk.r * std::sqrt(along_u * along_u + along_v * along_v);
+  };
+  // The nearest corner.
+  double upper = std::sqrt(nearest_squared);
+  const double foot_length = std::sqrt(x[nearest] * x[nearest] + y[nearest] * y[nearest]);
+  const double clamp = foot_length > disk.r ? disk.r / foot_length : 1.0;
+  Vec3 upper_disk = disk.c + (clamp * x[nearest]) * disk.u + (clamp * y[nearest]) * disk.v;
+  Vec3 upper_box = corner(nearest);
+  if (upper > 0.0) {
+    const Vec3 w = (upper_box - upper_disk) / upper;
+    lower = std::max(lower, w.dot(o) - h.dot(w.cwiseAbs()) - supportOfDisk(w));
+  }
+  // The faces turned towards c: normal m = sign(c_j - o_j) e_j.
+  for (int j = 0; j < 3; ++j) {
+    const double side = disk.c[j] < o[j] ? -1.0 : 1.0;
+    const double mu = side * disk.u[j], mv = side * disk.v[j];  // u.m, v.m
+    const double tilt = std::sqrt(mu * mu + mv * mv);
+    const Vec3 deepest =
+        tilt > 0.0 ? Vec3(disk.c - (disk.r / tilt) * (mu * disk.u + mv * disk.v)) : disk.c;
+    const double height = side * (deepest[j] - o[j]) - h[j];
+    if (!(height > 0.0)) continue;
+    lower = std::max(lower, height);
+    const int k = (j + 1) % 3, l = (j + 2) % 3;
+    if (std::abs(deepest[k] - o[k]) <= h[k] && std::abs(deepest[l] - o[l]) <= h[l] &&
+        height < upper) {
+      upper = height;
+      upper_disk = deepest;
+      upper_box = deepest;
+      upper_box[j] = o[j] + side * h[j];
+    }
+  }
+  if (upper - lower <= kShapeGapTolerance * scale) {
+    answer.exact = true;
+    answer.distance = upper;
+    answer.p_disk = upper_disk;
+    answer.p_leaf = upper_box;
+    return answer;
+  }
+  answer.distance = lower > 0.0 ? lower : 0.0;
+  return answer;
+}
+
+/// The largest magnitude a triangle bound is computed from, but for the
+/// disk's share.
+inline double triangleBoundMagnitude(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
+  return std::max({p0.cwiseAbs().maxCoeff(), p1.cwiseAbs().maxCoeff(), p2.cwiseAbs().maxCoeff()});
+}
+
+}  // namespace internal
+}  // namespace fcl_disk

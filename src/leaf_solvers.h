@@ -1,0 +1,27 @@
+// Internal: the certified disk-triangle and disk-box solvers as the mesh and
+// octree traversals call them, on a disk already posed in the leaf's frame (a
+// DiskInShape, double): the same solver runs as diskShapeDistance /
+// diskShapeIntersect with fcl::TriangleP and fcl::Box, without re-validating
+// the poses or changing frames per leaf. Defined in src/pairs/disk_triangle.cpp
+// and src/pairs/disk_box.cpp.
+#pragma once
+
+#include "disk_shape_solver.h"
+
+namespace fcl_disk {
+namespace internal {
+
+/// The triangle a, b, c (the disk's frame): the solution, a NaN distance for
+/// vertices outside fcl_disk's length range.
+DiskShapeSolution solveDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b,
+                                    const Vec3& c);
+/// Whether the disk meets the triangle; if so, `contact` (when given) in that frame.
+bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b, const Vec3& c,
+                           FrameContact* contact);
+
+/// The box centred at the frame's origin, axis-aligned, half-extents `half`.
+DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half);
+bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact);
+
+}  // namespace internal
+}  // namespace fcl_disk

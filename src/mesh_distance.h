@@ -1,0 +1,187 @@
+// Internal: the distance between a disk and a triangle mesh (fcl::BVHModel of
+// any bounding volume FCL has), in the mesh's frame M. docs/meshes_and_octrees.md,
+// "Distance traversal".
+//
+// Best-first search of the model's hierarchy: a queue of nodes ordered by a
+// lower bound on the distance from the disk to what they hold, popped until the
+// least bound cannot beat the best distance found (FCL's stop rule, with the
+// request's rel_err and abs_err). Bounds (src/environment_bounds.h): an inner
+// node's volume as an oriented box (diskBoxLowerBound); a leaf's triangle by
+// triangleToDisk, which answers exactly when the triangle projects into the
+// disk, so that leaf never reaches the solver; other leaves run the certified
+// disk-triangle solver (src/pairs/disk_triangle.cpp) when popped.
+//
+// Frame, units: M and its lengths; the disk as a DiskInShape in M. Guarantee:
+// the distance is the least over the triangles of their certified distances,
+// less at most the bounds' rounding pad (kEnvironmentBoundPadUlps), i.e. within
+// the leaf solver's 1e-12 of the scene. Ties: the triangle found first keeps
+// the answer (a later one must be strictly closer), as FCL. Overlap: distance
+// 0 with a common point, and the search stops there. Triangles with NaN or
+// out-of-range vertices answer NaN and are skipped, as FCL skips them.
+// Thread safety: the queue is thread-local scratch; nothing else is shared.
+#pragma once
+
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/OBB.h>
+#include <fcl/math/bv/OBBRSS.h>
+#include <fcl/math/bv/RSS.h>
+#include <fcl/math/bv/kDOP.h>
+#include <fcl/math/bv/kIOS.h>
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include "environment_bounds.h"
+#include "leaf_solvers.h"
+
+namespace fcl_disk {
+namespace internal {
+
+/// A lower bound on the distance from the disk to an FCL bounding volume
+/// (frame M), unpadded, and the magnitude its rounding pad scales with (but
+/// for the disk's share).
+struct VolumeBound {
+  double bound;
+  double magnitude;
+};
+template <typename S>
+VolumeBound volumeBound(const DiskInShape& disk, const fcl::AABB<S>& box) {
+  const Vec3 o = ((box.min_ + box.max_) / 2).template cast<double>();
+  const Vec3 e = ((box.max_ - box.min_) / 2).template cast<double>();
+  return {diskAlignedBoxLowerBound(disk, o, e), boxBoundMagnitude(o, e)};
+}
+/// A k-DOP: its first three slab pairs, FCL's coordinate axes.
+template <typename S, std::size_t N>
+VolumeBound volumeBound(const DiskInShape& disk, const fcl::KDOP<S, N>& kdop) {
+  const Vec3 low(kdop.dist(0), kdop.dist(1), kdop.dist(2));
+  const Vec3 high(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2));
+  const Vec3 o = (low + high) / 2, e = (high - low) / 2;
+  return {diskAlignedBoxLowerBound(disk, o, e), boxBoundMagnitude(o, e)};
+}
+template <typename S>
+VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {
+  const OrientedBox box{obb.To.template cast<double>(), obb.axis.template cast<double>(),
+                        obb.extent.template cast<double>()};
+  return {diskBoxLowerBound(disk, box), boxBoundMagnitude(box.o, box.e)};
+}
+/// An RSS: the rectangle To + [0, l0] axis_0 + [0, l1] axis_1 swept by a
+/// sphere of radius r, bounded by its box.
+template <typename S>
+VolumeBound volumeBound(const DiskInShape& disk, const fcl::RSS<S>& rss) {
+  const Mat3 axes = rss.axis.template cast<double>();
+  const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]), r = rss.r;
+  const OrientedBox box{rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1),
+                        axes, Vec3(half0 + r, half1 + r, r)};
+  return {diskBoxLowerBound(disk, box), boxBoundMagnitude(box.o, box.e)};
+}
+template <typename S>
+VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBBRSS<S>& obbrss) {
+  return volumeBound(disk, obbrss.obb);
+}
+template <typename S>
+VolumeBound volumeBound(const DiskInShape& disk, const fcl::kIOS<S>& kios) {
+  return volumeBound(disk, kios.obb);
+}
+
+/// FCL's stop rule for distance traversals (MeshShapeDistanceTraversalNode::
+/// canStop): nothing with lower bound `bound` can improve `best` by more than
+/// the request's tolerances.
+inline bool cannotImprove(double bound, double best, double rel_err, double abs_err) {
+  return bound >= best - abs_err && bound * (1 + rel_err) >= best;
+}
+
+struct MeshDistanceAnswer {
+  double distance = std::numeric_limits<double>::infinity();
+  int triangle = -1;  ///< -1: nothing closer than the starting best
+  Vec3 p_disk{Vec3::Zero()}, p_triangle{Vec3::Zero()};  ///< frame M
+};
+
+/// The disk against the mesh, only triangles closer than `best` (the result's
+/// distance so far) counted.
+template <typename BV>
+MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel<BV>& model,
+                                    double best, double rel_err, double abs_err) {
+  using S = typename BV::S;
+  // The volumes of a float mesh hold its triangles to float rounding.
+  const double volume_pad =
+      kEnvironmentBoundPadUlps * double(std::numeric_limits<S>::epsilon());
+  const double triangle_pad = kEnvironmentBoundPadUlps * std::numeric_limits<double>::epsilon();
+  MeshDistanceAnswer answer;
+  answer.distance = best;
+  if (model.getNumBVs() <= 0) return answer;
+
+  const auto vertex = [&model](int index) -> Vec3 {
+    return model.vertices[index].template cast<double>();
+  };
+  const auto consider = [&](int triangle, const Vec3& p_disk, const Vec3& p_triangle,
+                            double distance) {
+    if (distance < answer.distance) {
+      answer.distance = distance;
+      answer.triangle = triangle;
+      answer.p_disk = p_disk;
+      answer.p_triangle = p_triangle;
+    }
+  };
+
+  // (bound, node); a leaf is queued only when its triangle needs the solver.
+  using Entry = std::pair<double, int>;
+  thread_local std::vector<Entry> scratch;
+  std::vector<Entry>& queue = scratch;
+  queue.clear();
+  const double disk_magnitude = diskBoundMagnitude(disk);
+  const double disk_scale = disk.r + disk.c.norm();  // the leaf solver's share
+  const auto enqueue = [&](int node_index) {
+    const auto& node = model.getBV(node_index);
+    double bound;
+    if (node.isLeaf()) {
+      const int triangle = node.primitiveId();
+      const fcl::Triangle& corners = model.tri_indices[triangle];
+      const Vec3 p0 = vertex(corners[0]), p1 = vertex(corners[1]), p2 = vertex(corners[2]);
+      const double triangle_radius =
+          std::sqrt(std::max({p0.squaredNorm(), p1.squaredNorm(), p2.squaredNorm()}));
+      const LeafToDisk leaf =
+          triangleToDisk(disk, p0, p1, p2, disk_scale + triangle_radius);
+      if (leaf.exact) {
+        consider(triangle, leaf.p_disk, leaf.p_leaf, leaf.distance);
+        return;
+      }
+      bound = leaf.distance -
+              triangle_pad * (disk_magnitude + triangleBoundMagnitude(p0, p1, p2));
+    } else {
+      const VolumeBound volume = volumeBound(disk, node.bv);
+      bound = volume.bound - volume_pad * (disk_magnitude + volume.magnitude);
+    }
+    if (!(bound > 0.0)) bound = 0.0;  // NaN volumes are searched, never pruned
+    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return;
+    queue.emplace_back(bound, node_index);
+    std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
+  };
+
+  enqueue(0);
+  while (!queue.empty()) {
+    const Entry next = queue.front();
+    if (cannotImprove(next.first, answer.distance, rel_err, abs_err)) break;
+    std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
+    queue.pop_back();
+    const auto& node = model.getBV(next.second);
+    if (node.isLeaf()) {
+      const int triangle = node.primitiveId();
+      const fcl::Triangle& corners = model.tri_indices[triangle];
+      const DiskShapeSolution solution =
+          solveDiskTriangle(disk, vertex(corners[0]), vertex(corners[1]), vertex(corners[2]));
+      consider(triangle, solution.p, solution.q, solution.distance);
+    } else {
+      enqueue(node.leftChild());
+      enqueue(node.rightChild());
+    }
+    if (answer.distance <= 0.0) break;  // an overlap: nothing is closer
+  }
+  return answer;
+}
+
+}  // namespace internal
+}  // namespace fcl_disk

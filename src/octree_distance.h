@@ -1,0 +1,133 @@
+// Internal: the distance between a disk and the occupied cells of an octree
+// (fcl::OcTree), in the octree's frame O. docs/meshes_and_octrees.md,
+// "Distance traversal".
+//
+// Best-first search of the tree, as the mesh traversal (src/mesh_distance.h):
+// cells queued by a lower bound on their distance to the disk (an inner cell's
+// cube by diskAlignedBoxLowerBound; an occupied leaf by alignedBoxToDisk,
+// which answers exactly for many cells, the others running the certified
+// disk-box solver, src/pairs/disk_box.cpp, when popped), popped until the least
+// bound cannot beat the best distance (FCL's stop rule with the request's
+// rel_err and abs_err). Which cells count is FCL's (OcTreeSolver::
+// OcTreeShapeDistanceRecurse): a leaf if occupied, an inner cell's subtree
+// only if that cell is occupied (octomap keeps an inner cell's occupancy the
+// largest of its children's); the cells are FCL's (getRootBV, computeChildBV).
+//
+// Frame, units: O and its lengths; the disk as a DiskInShape in O. Guarantee:
+// the least certified disk-cell distance over the cells counted, less at most
+// the bounds' rounding pad. Ties: the cell found first keeps the answer. The
+// cell's id is FCL's: its node's offset from the root node. Overlap: distance 0
+// with a common point, and the search stops. Thread safety: thread-local
+// scratch only.
+#pragma once
+
+#include <fcl/geometry/octree/octree.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "environment_bounds.h"
+#include "leaf_solvers.h"
+#include "mesh_distance.h"  // cannotImprove
+
+namespace fcl_disk {
+namespace internal {
+
+struct OcTreeDistanceAnswer {
+  double distance = std::numeric_limits<double>::infinity();
+  bool found = false;     ///< false: nothing closer than the starting best
+  std::intptr_t cell = 0;  ///< FCL's id (the node's offset from the root node: any sign)
+  Vec3 p_disk{Vec3::Zero()}, p_cell{Vec3::Zero()};  ///< frame O
+};
+
+template <typename S>
+OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTree<S>& tree,
+                                        double best, double rel_err, double abs_err) {
+  using Node = typename fcl::OcTree<S>::OcTreeNode;
+  // The cells' bounds are computed in S (FCL's), so they hold to S's rounding.
+  const double pad = kEnvironmentBoundPadUlps * double(std::numeric_limits<S>::epsilon());
+  OcTreeDistanceAnswer answer;
+  answer.distance = best;
+  const Node* root = tree.getRoot();
+  if (root == nullptr) return answer;
+
+  struct Entry {
+    double bound;
+    const Node* node;
+    fcl::AABB<S> cell;
+    bool operator>(const Entry& other) const { return bound > other.bound; }
+  };
+  thread_local std::vector<Entry> scratch;
+  std::vector<Entry>& queue = scratch;
+  queue.clear();
+  const double disk_magnitude = diskBoundMagnitude(disk);
+  const auto boxOf = [](const fcl::AABB<S>& cell, Vec3* centre, Vec3* half) {
+    *centre = ((cell.min_ + cell.max_) / 2).template cast<double>();
+    *half = ((cell.max_ - cell.min_) / 2).template cast<double>();
+  };
+  const auto enqueue = [&](const Node* node, const fcl::AABB<S>& cell) {
+    Vec3 centre, half;
+    boxOf(cell, &centre, &half);
+    double bound;
+    if (!tree.nodeHasChildren(node)) {
+      if (!tree.isNodeOccupied(node)) return;
+      const LeafToDisk leaf =
+          alignedBoxToDisk(disk, centre, half, disk.r + half.norm() + (disk.c - centre).norm());
+      if (leaf.exact) {
+        if (leaf.distance < answer.distance) {
+          answer.distance = leaf.distance;
+          answer.found = true;
+          answer.cell = node - root;
+          answer.p_disk = leaf.p_disk;
+          answer.p_cell = leaf.p_leaf;
+        }
+        return;
+      }
+      bound = leaf.distance;
+    } else {
+      if (!tree.isNodeOccupied(node)) return;
+      bound = diskAlignedBoxLowerBound(disk, centre, half);
+    }
+    bound -= pad * (disk_magnitude + boxBoundMagnitude(centre, half));
+    if (!(bound > 0.0)) bound = 0.0;  // NaN cells are searched, never pruned
+    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return;
+    queue.push_back(Entry{bound, node, cell});
+    std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
+  };
+
+  enqueue(root, tree.getRootBV());
+  while (!queue.empty()) {
+    const Entry next = queue.front();
+    if (cannotImprove(next.bound, answer.distance, rel_err, abs_err)) break;
+    std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
+    queue.pop_back();
+    if (!tree.nodeHasChildren(next.node)) {
+      Vec3 centre, half;
+      boxOf(next.cell, &centre, &half);
+      DiskShapeSolution solution =
+          solveDiskBox(DiskInShape{disk.c - centre, disk.u, disk.v, disk.n, disk.r}, half);
+      if (solution.distance < answer.distance) {
+        answer.distance = solution.distance;
+        answer.found = true;
+        answer.cell = next.node - root;
+        answer.p_disk = solution.p + centre;
+        answer.p_cell = solution.q + centre;
+      }
+    } else {
+      for (unsigned int i = 0; i < 8; ++i) {
+        if (!tree.nodeChildExists(next.node, i)) continue;
+        fcl::AABB<S> child;
+        fcl::computeChildBV(next.cell, i, child);
+        enqueue(tree.getNodeChild(next.node, i), child);
+      }
+    }
+    if (answer.distance <= 0.0) break;  // an overlap: nothing is closer
+  }
+  return answer;
+}
+
+}  // namespace internal
+}  // namespace fcl_disk
