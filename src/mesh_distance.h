@@ -69,14 +69,16 @@ VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {
   return {diskBoxLowerBound(disk, box), boxBoundMagnitude(box.o, box.e)};
 }
 /// An RSS: the rectangle To + [0, l0] axis_0 + [0, l1] axis_1 swept by a
-/// sphere of radius r, bounded by its box.
+/// sphere of radius r: the rectangle's bound (a box of zero thickness) less r.
 template <typename S>
 VolumeBound volumeBound(const DiskInShape& disk, const fcl::RSS<S>& rss) {
   const Mat3 axes = rss.axis.template cast<double>();
-  const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]), r = rss.r;
-  const OrientedBox box{rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1),
-                        axes, Vec3(half0 + r, half1 + r, r)};
-  return {diskBoxLowerBound(disk, box), boxBoundMagnitude(box.o, box.e)};
+  const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]);
+  const OrientedBox rectangle{
+      rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1), axes,
+      Vec3(half0, half1, 0.0)};
+  return {diskBoxLowerBound(disk, rectangle) - double(rss.r),
+          boxBoundMagnitude(rectangle.o, rectangle.e) + double(rss.r)};
 }
 template <typename S>
 VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBBRSS<S>& obbrss) {
