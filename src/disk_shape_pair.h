@@ -11,10 +11,12 @@
 #include <initializer_list>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <utility>
 
 #include "disk_penetration_candidates.h"
 #include "disk_shape_solver.h"
+#include "environment_bounds.h"
 #include "fcl_disk/disk_shape_distance.h"
 
 namespace fcl_disk {
@@ -148,6 +150,14 @@ DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WS, const Vec3& common
 /// cylinder-cap); below this the iteration's answer stands.
 constexpr double kOpenOverlapDepth = 1e-7;
 
+/// Whether a Traits class has a closed form for some configurations:
+///   static LeafToDisk closedForm(const DiskInShape&, const Shape&, double scale);
+/// (src/environment_bounds.h), tried before the generic solver.
+template <typename Traits, typename = void>
+constexpr bool kHasClosedForm = false;
+template <typename Traits>
+constexpr bool kHasClosedForm<Traits, std::void_t<decltype(&Traits::closedForm)>> = true;
+
 /// Each pair specialises this for its shape class (src/pairs/disk_<shape>.cpp)
 /// with static distance() and intersect() matching diskShapeDistance /
 /// diskShapeIntersect; GenericDiskShapePair implements both for pairs solved by
@@ -205,9 +215,26 @@ struct GenericDiskShapePair {
     return toWorld(X_WS, solveInShapeFrame(diskInShape(radius, X_WD, X_WS), shape));
   }
 
-  /// distance() in the shape's frame, for a valid pair.
-  static DiskShapeSolution solveInShapeFrame(const DiskInShape& disk, const Shape& shape) {
+  /// distance() in the shape's frame, for a valid pair: the Traits' closed
+  /// form where it certifies itself (Traits::closedForm, if it has one and
+  /// `try_closed_form`: callers that tried it already pass false), else the
+  /// generic solver.
+  static DiskShapeSolution solveInShapeFrame(const DiskInShape& disk, const Shape& shape,
+                                             bool try_closed_form = true) {
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
+    if constexpr (kHasClosedForm<Traits>) {
+      if (try_closed_form) {
+        const LeafToDisk closed = Traits::closedForm(disk, shape, scale);
+        if (closed.exact) {
+          DiskShapeSolution solution;
+          solution.p = closed.p_disk;
+          solution.q = closed.p_leaf;
+          solution.distance = closed.distance;
+          solution.lower_bound = closed.certified;
+          return solution;
+        }
+      }
+    }
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     DiskShapeSolution solution = solveDiskShape(target, disk, rho, scale, SolverGoal::distance);

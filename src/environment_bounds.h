@@ -112,6 +112,7 @@ inline double diskBoundMagnitude(const DiskInShape& disk) {
 struct LeafToDisk {
   bool exact = false;
   double distance = 0.0;
+  double certified = 0.0;  ///< exact only: the certificate, <= the true distance
   Vec3 p_disk{Vec3::Zero()}, p_leaf{Vec3::Zero()};  ///< exact only
 };
 
@@ -172,7 +173,7 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   if (!std::isfinite(lowest) || !std::isfinite(highest)) return answer;  // bound 0
   if (inside) {
     answer.exact = true;
-    answer.distance = a_min;
+    answer.distance = answer.certified = a_min;
     if (!crosses) {
       int k = 0;
       for (int i = 1; i < 3; ++i) {
@@ -255,6 +256,7 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   if (upper - lower <= kShapeGapTolerance * scale) {
     answer.exact = true;
     answer.distance = upper;
+    answer.certified = std::min(lower, upper);
     answer.p_disk = upper_disk;
     answer.p_leaf = upper_triangle;
     return answer;
@@ -317,11 +319,11 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
       const double t = a[highest] > a[lowest] ? a[highest] / (a[highest] - a[lowest]) : 0.0;
       answer.p_leaf = corner(highest) + t * (corner(lowest) - corner(highest));
       answer.p_disk = answer.p_leaf;
-      answer.distance = 0.0;
+      answer.distance = answer.certified = 0.0;
       return answer;
     }
     const int k = a[lowest] > 0.0 ? lowest : highest;
-    answer.distance = std::abs(a[k]);
+    answer.distance = answer.certified = std::abs(a[k]);
     answer.p_leaf = corner(k);
     answer.p_disk = disk.c + x[k] * disk.u + y[k] * disk.v;
     return answer;
@@ -363,6 +365,7 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
   if (upper - lower <= kShapeGapTolerance * scale) {
     answer.exact = true;
     answer.distance = upper;
+    answer.certified = std::min(lower, upper);
     answer.p_disk = upper_disk;
     answer.p_leaf = upper_box;
     return answer;

@@ -11,15 +11,18 @@
 namespace fcl_disk {
 namespace internal {
 
-/// The triangle a, b, c (the disk's frame): the solution, a NaN distance for
-/// vertices outside fcl_disk's length range.
+/// The triangle a, b, c (the disk's frame): the generic solver's solution (the
+/// caller has tried triangleToDisk), a NaN distance for vertices outside
+/// fcl_disk's length range.
 DiskShapeSolution solveDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b,
                                     const Vec3& c);
 /// Whether the disk meets the triangle; if so, `contact` (when given) in that frame.
 bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b, const Vec3& c,
                            FrameContact* contact);
 
-/// The box centred at the frame's origin, axis-aligned, half-extents `half`.
+/// The box centred at the frame's origin, axis-aligned, half-extents `half`
+/// (solveDiskBox: the generic solver's solution; the caller has tried
+/// alignedBoxToDisk).
 DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half);
 bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact);
 

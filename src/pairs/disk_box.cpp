@@ -61,6 +61,11 @@ struct BoxTraits {
     return 0.5 * box.side.template cast<double>().norm();
   }
   static double inflation(const fcl::Box<S>&) { return 0.0; }
+  /// A corner or a face nearest a disk point, certified without iterating
+  /// (alignedBoxToDisk, src/environment_bounds.h).
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Box<S>& box, double scale) {
+    return alignedBoxToDisk(disk, Vec3::Zero(), 0.5 * box.side.template cast<double>(), scale);
+  }
   static BoxTarget target(const fcl::Box<S>& box) {
     return BoxTarget{0.5 * box.side.template cast<double>()};
   }
@@ -101,7 +106,8 @@ template <typename S>
 struct DiskShapePair<fcl::Box<S>> : GenericDiskShapePair<S, fcl::Box<S>, BoxTraits<S>> {};
 
 DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half) {
-  return DiskShapePair<fcl::Box<double>>::solveInShapeFrame(disk, fcl::Box<double>(2.0 * half));
+  return DiskShapePair<fcl::Box<double>>::solveInShapeFrame(disk, fcl::Box<double>(2.0 * half),
+                                                              /*try_closed_form=*/false);
 }
 
 bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact) {

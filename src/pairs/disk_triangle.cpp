@@ -53,6 +53,14 @@ struct TriangleTraits {
                                triangle.c.template cast<double>().squaredNorm()}));
   }
   static double inflation(const fcl::TriangleP<S>&) { return 0.0; }
+  /// A vertex or the face nearest a disk point, or a triangle over the disk,
+  /// certified without iterating (triangleToDisk, src/environment_bounds.h).
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::TriangleP<S>& triangle,
+                               double scale) {
+    return triangleToDisk(disk, triangle.a.template cast<double>(),
+                          triangle.b.template cast<double>(), triangle.c.template cast<double>(),
+                          scale);
+  }
   static TriangleTarget target(const fcl::TriangleP<S>& triangle) {
     return TriangleTarget{TriangleProjection(triangle.a.template cast<double>(),
                                              triangle.b.template cast<double>(),
@@ -91,7 +99,8 @@ DiskShapeSolution solveDiskTriangle(const DiskInShape& disk, const Vec3& a, cons
     nan.distance = nan.lower_bound = std::numeric_limits<double>::quiet_NaN();
     return nan;
   }
-  return DiskShapePair<fcl::TriangleP<double>>::solveInShapeFrame(disk, triangle);
+  return DiskShapePair<fcl::TriangleP<double>>::solveInShapeFrame(disk, triangle,
+                                                                   /*try_closed_form=*/false);
 }
 
 bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b, const Vec3& c,
