@@ -266,9 +266,23 @@ struct GenericDiskShapePair {
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
+    const double touching = kShapeTouchingTolerance * scale;
+    if constexpr (kHasClosedForm<Traits>) {
+      // The closed form distance() tries first decides here too, so that a
+      // pair at distance 0 intersects.
+      const LeafToDisk closed = Traits::closedForm(disk, shape, scale);
+      if (closed.exact) {
+        if (!(closed.distance <= touching)) return false;
+        if (contact) {
+          contact->pos = 0.5 * (closed.p_disk + closed.p_leaf);
+          contact->separation =
+              shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
+        }
+        return true;
+      }
+    }
     const DiskShapeSolution solution =
         solveDiskShape(target, disk, rho, scale, SolverGoal::intersection);
-    const double touching = kShapeTouchingTolerance * scale;
     std::optional<Separation> separation;
     if (!(solution.distance <= touching) &&
         !overlapLeftOpen(target, disk, rho, solution, scale, &separation)) {
