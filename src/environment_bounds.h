@@ -44,8 +44,7 @@ namespace internal {
 constexpr double kEnvironmentBoundPadUlps = 64.0;
 
 /// An oriented box in the environment's frame: centre o, orthonormal axes (the
-/// columns of `axes`), half-extents e >= 0; axis-aligned boxes leave `axes`
-/// unused.
+/// columns of `axes`), half-extents e >= 0.
 struct OrientedBox {
   Vec3 o;
   Mat3 axes;

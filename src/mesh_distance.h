@@ -8,8 +8,9 @@
 // request's rel_err and abs_err). Bounds (src/environment_bounds.h): an inner
 // node's volume as an oriented box (diskBoxLowerBound); a leaf's triangle by
 // triangleToDisk, which answers exactly when the triangle projects into the
-// disk, so that leaf never reaches the solver; other leaves run the certified
-// disk-triangle solver (src/pairs/disk_triangle.cpp) when popped.
+// disk or its certificate closes (a vertex or the face nearest a disk point),
+// so that leaf never reaches the solver; other leaves run the certified
+// disk-triangle solver (src/leaf_solvers.h) when popped.
 //
 // Frame, units: M and its lengths; the disk as a DiskInShape in M. Guarantee:
 // the distance is the least over the triangles of their certified distances,
