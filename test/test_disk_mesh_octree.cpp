@@ -1119,8 +1119,8 @@ TYPED_TEST(DiskEnvironment, BroadphaseNearestDistanceAndCollisionMatchBruteForce
 
 // ---- bad input ---------------------------------------------------------------------
 
-// NaN in the disk's pose or the mesh's / octree's pose: NaN distance and no
-// contact (never a crash: Debian's FCL asserts in GJK on NaN), every BV type,
+// NaN in the disk's pose or the mesh's / octree's pose, or a mesh / octree
+// pose that is not rigid: NaN distance and no contact (never a crash: Debian's FCL asserts in GJK on NaN), every BV type,
 // both orders, both solvers, objects and geometries, as for every Disk pair
 // (test_disk_shape_cases.cpp, docs/robustness.md).
 TYPED_TEST(DiskEnvironment, NaNPoseGivesNaNDistanceAndNoContact) {
@@ -1134,13 +1134,21 @@ TYPED_TEST(DiskEnvironment, NaNPoseGivesNaNDistanceAndNoContact) {
   auto disk = std::make_shared<fcl_disk::Disk<S>>(S(0.5));
   const fcl::Transform3<S> X_WE = fam::randomFrame(kSeed + 600).cast<S>();
   const fcl::Transform3<S> X_WD = X_WE;  // at the sets' frame origin, among triangles and cells
-  for (int corrupt = 0; corrupt < 2; ++corrupt) {
+  // 0: NaN in the disk's pose; 1: in the other's; 2: the other's rotation
+  // scaled by 2 (not rigid; the disk's is covered by every Disk pair's tests).
+  for (int corrupt = 0; corrupt < 3; ++corrupt) {
     fcl::Transform3<S> disk_pose = X_WD, other_pose = X_WE;
-    (corrupt == 0 ? disk_pose : other_pose).translation().x() = nan;
+    if (corrupt == 2) {
+      other_pose.linear() *= S(2);
+    } else {
+      (corrupt == 0 ? disk_pose : other_pose).translation().x() = nan;
+    }
     for (const auto& [name, other] : others) {
       for (const bool disk_first : {true, false}) {
         for (const auto solver : kSolvers) {
-          SCOPED_TRACE(name + (corrupt == 0 ? ": disk pose NaN, " : ": other pose NaN, ") +
+          SCOPED_TRACE(name + (corrupt == 0   ? ": disk pose NaN, "
+                               : corrupt == 1 ? ": other pose NaN, "
+                                              : ": other pose not rigid, ") +
                        (disk_first ? "disk first, " : "other first, ") + solverName(solver));
           std::string mismatch;
           const auto r = fclDistance<S>(disk, disk_pose, other, other_pose, disk_first, solver, &mismatch);
