@@ -6,7 +6,7 @@
 // cells queued by a lower bound on their distance to the disk (an inner cell's
 // cube by diskAlignedBoxLowerBound; an occupied leaf by alignedBoxToDisk,
 // which answers exactly for many cells, the others running the certified
-// disk-box solver, src/pairs/disk_box.cpp, when popped), popped until the least
+// disk-box solver, src/leaf_solvers.h, when popped), popped until the least
 // bound cannot beat the best distance (FCL's stop rule with the request's
 // rel_err and abs_err). Which cells count is FCL's (OcTreeSolver::
 // OcTreeShapeDistanceRecurse): a leaf if occupied, an inner cell's subtree
