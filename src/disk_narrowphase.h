@@ -1,25 +1,23 @@
-// DiskNarrowPhase: the narrowphase solver that FCL's mesh and octree traversals
-// call at their leaves, answering with fcl_disk's exact solvers when the shape
-// is a Disk.
+// DiskNarrowPhase: the narrowphase solver that FCL's mesh and octree collision
+// traversals call at their leaves, answering with fcl_disk's exact solvers when
+// the shape is a Disk. (Distance against meshes and octrees is fcl_disk's own
+// traversal: src/mesh_distance.h, src/octree_distance.h.)
 //
-// FCL's traversal templates (BVHShapeDistancer, BVHShapeCollider,
-// OcTreeShapeDistance, ShapeOcTreeCollide, ...; fcl/narrowphase/detail/) take
-// the narrowphase solver as a template parameter and only call the members
-// below on it. Instantiated with Shape = Disk<S> and this solver, they keep
-// FCL's traversal, pruning, result and contact conventions (b1/b2 = triangle or
-// cell id, world-frame points) while every leaf test is exact:
-//   a triangle  diskShapeDistance / diskShapeIntersect with fcl::TriangleP
-//               (src/pairs/disk_triangle.cpp);
+// FCL's traversal templates (BVHShapeCollider, OcTreeShapeCollide, ...;
+// fcl/narrowphase/detail/) take the narrowphase solver as a template parameter
+// and only call the members below on it. Instantiated with Shape = Disk<S> and
+// this solver, they keep FCL's traversal, pruning, result and contact
+// conventions (b1/b2 = triangle or cell id, world-frame points) while every
+// leaf test is exact:
+//   a triangle  diskShapeIntersect with fcl::TriangleP (src/pairs/disk_triangle.cpp);
 //   an octree cell (FCL passes it as a Box and its pose) with fcl::Box
 //               (src/pairs/disk_box.cpp).
 // Bounding volumes of the disk in those traversals: include/fcl_disk/disk_bv.h.
 //
-// Conventions, as FCL's GJK solvers: points in the world frame; the first
-// shape's point first; a collision normal is a unit vector from the first
-// shape towards the second (FCL negates it where the mesh or octree is o1).
-// Distances are never negative: overlapping sets get 0 and a common point,
-// as every Disk pair (docs/disk_shape_distance.md). Stateless, so one
-// instance serves every thread.
+// Conventions, as FCL's GJK solvers: points in the world frame; a collision
+// normal is a unit vector from the first shape towards the second (FCL negates
+// it where the mesh or octree is o1). Stateless, so one instance serves every
+// thread (DiskInFrameNarrowPhase below holds its query's disk: one per query).
 #pragma once
 
 #include <algorithm>
@@ -50,26 +48,6 @@ class DiskNarrowPhase {
   void setCachedGuess(const Vector3&) const {}
   Vector3 getCachedGuess() const { return Vector3::UnitX(); }
 
-  /// Disk against the triangle (a, b, c) given in the world frame.
-  bool shapeTriangleDistance(const Disk<S>& disk, const Transform3& X_WD, const Vector3& a,
-                             const Vector3& b, const Vector3& c, S* distance, Vector3* p_disk,
-                             Vector3* p_triangle) const {
-    return shapeTriangleDistance(disk, X_WD, a, b, c, Transform3::Identity(), distance, p_disk,
-                                 p_triangle);
-  }
-
-  /// Disk against the triangle (a, b, c) given in a frame M with pose X_WM.
-  bool shapeTriangleDistance(const Disk<S>& disk, const Transform3& X_WD, const Vector3& a,
-                             const Vector3& b, const Vector3& c, const Transform3& X_WM,
-                             S* distance, Vector3* p_disk, Vector3* p_triangle) const {
-    const DiskShapeDistanceResult<S> answer =
-        diskShapeDistance(disk.radius, X_WD, fcl::TriangleP<S>(a, b, c), X_WM);
-    *distance = answer.distance;
-    if (p_disk) *p_disk = answer.p_W_disk;
-    if (p_triangle) *p_triangle = answer.p_W_shape;
-    return true;
-  }
-
   /// Whether the disk meets the triangle (a, b, c) given in the world frame; if
   /// so and `contact_point` is given, FCL's single contact.
   bool shapeTriangleIntersect(const Disk<S>& disk, const Transform3& X_WD, const Vector3& a,
@@ -95,17 +73,6 @@ class DiskNarrowPhase {
       if (penetration_depth) *penetration_depth = contact.penetration_depth;
       if (normal) *normal = contact.normal;
     }
-    return true;
-  }
-
-  /// An octree cell (FCL's box) against the disk: the box's point first.
-  bool shapeDistance(const fcl::Box<S>& box, const Transform3& X_WB, const Disk<S>& disk,
-                     const Transform3& X_WD, S* distance, Vector3* p_box,
-                     Vector3* p_disk) const {
-    const DiskShapeDistanceResult<S> answer = diskShapeDistance(disk.radius, X_WD, box, X_WB);
-    *distance = answer.distance;
-    if (p_box) *p_box = answer.p_W_shape;
-    if (p_disk) *p_disk = answer.p_W_disk;
     return true;
   }
 

@@ -102,11 +102,19 @@ struct DiskInShape {
   Vec2 inPlane(const Vec3& w) const { return Vec2(u.dot(w), v.dot(w)); }
   /// h_K(w) = max over the disk of w.k = w.c + r |P w|.
   double support(const Vec3& w) const { return w.dot(c) + r * inPlane(w).norm(); }
+  /// The disk point least along w: c - r P w / |P w| (P w = (u.w) u + (v.w) v),
+  /// the centre when w is normal to the disk (every point ties).
+  Vec3 lowestAlong(const Vec3& w) const {
+    const Vec2 planar = inPlane(w);
+    const double length = planar.norm();
+    return length > 0.0 ? point(-(r / length) * planar) : c;
+  }
   /// The disk point nearest y: y's foot on the disk's plane, clamped to the rim.
-  Vec2 nearest(const Vec3& y) const {
-    const Vec2 foot = inPlane(y - c);
-    const double length = foot.norm();
-    return length > r ? Vec2(foot.x() * (r / length), foot.y() * (r / length)) : foot;
+  Vec2 nearest(const Vec3& y) const { return clampedToRim(inPlane(y - c)); }
+  /// The in-plane point s, clamped to the rim.
+  Vec2 clampedToRim(const Vec2& s) const {
+    const double length = s.norm();
+    return length > r ? Vec2(s.x() * (r / length), s.y() * (r / length)) : s;
   }
 };
 

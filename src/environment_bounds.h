@@ -115,6 +115,25 @@ struct LeafToDisk {
   Vec3 p_disk{Vec3::Zero()}, p_leaf{Vec3::Zero()};  ///< exact only
 };
 
+/// A leaf whose best upper bound (the pair p_disk, p_leaf, `upper` apart) and
+/// best lower bound are known: exact when they meet within kShapeGapTolerance
+/// of the scene (the solver's own stopping test), else the lower bound (0 for
+/// NaN).
+inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_disk,
+                                   const Vec3& p_leaf, double scale) {
+  LeafToDisk answer;
+  if (upper - lower <= kShapeGapTolerance * scale) {
+    answer.exact = true;
+    answer.distance = upper;
+    answer.certified = std::min(lower, upper);
+    answer.p_disk = p_disk;
+    answer.p_leaf = p_leaf;
+    return answer;
+  }
+  answer.distance = lower > 0.0 ? lower : 0.0;
+  return answer;
+}
+
 /// The distance from the origin to the closed 2D triangle p0 p1 p2 (or a lower
 /// bound 0 for a degenerate one whose line passes through the origin).
 inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) {
@@ -179,7 +198,7 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
         if (std::abs(a[i]) < std::abs(a[k])) k = i;
       }
       answer.p_leaf = *vertices[k];
-      answer.p_disk = disk.c + foot[k].x() * disk.u + foot[k].y() * disk.v;
+      answer.p_disk = disk.point(foot[k]);
       return answer;
     }
     for (int i = 0; i < 3; ++i) {
@@ -200,10 +219,6 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   // (1), with rho_min the distance from the axis to the projected triangle.
   const double rho_gap = std::max(originToTriangle2(foot[0], foot[1], foot[2]) - disk.r, 0.0);
   double lower = std::sqrt(a_min * a_min + rho_gap * rho_gap);
-  const auto supportOfDisk = [&disk](const Vec3& w) {
-    const double along_u = disk.u.dot(w), along_v = disk.v.dot(w);
-    return w.dot(disk.c) + disk.r * std::sqrt(along_u * along_u + along_v * along_v);
-  };
   // The vertex nearest the disk.
   int k = 0;
   double nearest_squared[3];
@@ -212,13 +227,11 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
     if (nearest_squared[i] < nearest_squared[k]) k = i;
   }
   double upper = std::sqrt(nearest_squared[k]);
-  const double foot_length = foot[k].norm();
-  const double clamp = foot_length > disk.r ? disk.r / foot_length : 1.0;
-  Vec3 upper_disk = disk.c + (clamp * foot[k].x()) * disk.u + (clamp * foot[k].y()) * disk.v;
+  Vec3 upper_disk = disk.point(disk.clampedToRim(foot[k]));
   Vec3 upper_triangle = *vertices[k];
   if (upper > 0.0) {
     const Vec3 w = (upper_triangle - upper_disk) / upper;
-    lower = std::max(lower, std::min({w.dot(p0), w.dot(p1), w.dot(p2)}) - supportOfDisk(w));
+    lower = std::max(lower, std::min({w.dot(p0), w.dot(p1), w.dot(p2)}) - disk.support(w));
   }
   // The face: m its unit normal turned towards c. The bound takes the largest
   // m.p_i, so it holds when rounding leaves m off the normal of a sliver; the
@@ -229,11 +242,7 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   if (normal_squared > 0.0) {
     Vec3 m = normal / std::sqrt(normal_squared);
     if (m.dot(disk.c - p0) < 0.0) m = -m;
-    const double mu = disk.u.dot(m), mv = disk.v.dot(m);
-    const double tilt = std::sqrt(mu * mu + mv * mv);
-    // The disk's point least along m (its centre when parallel).
-    const Vec3 deepest =
-        tilt > 0.0 ? Vec3(disk.c - (disk.r / tilt) * (mu * disk.u + mv * disk.v)) : disk.c;
+    const Vec3 deepest = disk.lowestAlong(m);
     const double height = m.dot(deepest) - std::max({m.dot(p0), m.dot(p1), m.dot(p2)});
     if (height > 0.0) {
       lower = std::max(lower, height);
@@ -252,16 +261,7 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
       }
     }
   }
-  if (upper - lower <= kShapeGapTolerance * scale) {
-    answer.exact = true;
-    answer.distance = upper;
-    answer.certified = std::min(lower, upper);
-    answer.p_disk = upper_disk;
-    answer.p_leaf = upper_triangle;
-    return answer;
-  }
-  answer.distance = lower > 0.0 ? lower : 0.0;  // NaN: 0
-  return answer;
+  return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
 }
 
 /// The axis-aligned box centre o, half-extents h (frame of the disk's
@@ -324,31 +324,22 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
     const int k = a[lowest] > 0.0 ? lowest : highest;
     answer.distance = answer.certified = std::abs(a[k]);
     answer.p_leaf = corner(k);
-    answer.p_disk = disk.c + x[k] * disk.u + y[k] * disk.v;
+    answer.p_disk = disk.point(Vec2(x[k], y[k]));
     return answer;
   }
   double lower = diskAlignedBoxLowerBound(disk, o, h);
-  const auto supportOfDisk = [&disk](const Vec3& w) {
-    const double along_u = disk.u.dot(w), along_v = disk.v.dot(w);
-    return w.dot(disk.c) + disk.r * std::sqrt(along_u * along_u + along_v * along_v);
-  };
   // The nearest corner.
   double upper = std::sqrt(nearest_squared);
-  const double foot_length = std::sqrt(x[nearest] * x[nearest] + y[nearest] * y[nearest]);
-  const double clamp = foot_length > disk.r ? disk.r / foot_length : 1.0;
-  Vec3 upper_disk = disk.c + (clamp * x[nearest]) * disk.u + (clamp * y[nearest]) * disk.v;
   Vec3 upper_box = corner(nearest);
+  Vec3 upper_disk = disk.point(disk.clampedToRim(Vec2(x[nearest], y[nearest])));
   if (upper > 0.0) {
     const Vec3 w = (upper_box - upper_disk) / upper;
-    lower = std::max(lower, w.dot(o) - h.dot(w.cwiseAbs()) - supportOfDisk(w));
+    lower = std::max(lower, w.dot(o) - h.dot(w.cwiseAbs()) - disk.support(w));
   }
   // The faces turned towards c: normal m = sign(c_j - o_j) e_j.
   for (int j = 0; j < 3; ++j) {
     const double side = disk.c[j] < o[j] ? -1.0 : 1.0;
-    const double mu = side * disk.u[j], mv = side * disk.v[j];  // u.m, v.m
-    const double tilt = std::sqrt(mu * mu + mv * mv);
-    const Vec3 deepest =
-        tilt > 0.0 ? Vec3(disk.c - (disk.r / tilt) * (mu * disk.u + mv * disk.v)) : disk.c;
+    const Vec3 deepest = disk.lowestAlong(side * Vec3::Unit(j));
     const double height = side * (deepest[j] - o[j]) - h[j];
     if (!(height > 0.0)) continue;
     lower = std::max(lower, height);
@@ -361,16 +352,7 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
       upper_box[j] = o[j] + side * h[j];
     }
   }
-  if (upper - lower <= kShapeGapTolerance * scale) {
-    answer.exact = true;
-    answer.distance = upper;
-    answer.certified = std::min(lower, upper);
-    answer.p_disk = upper_disk;
-    answer.p_leaf = upper_box;
-    return answer;
-  }
-  answer.distance = lower > 0.0 ? lower : 0.0;
-  return answer;
+  return certifiedOrBound(lower, upper, upper_disk, upper_box, scale);
 }
 
 /// The largest magnitude a triangle bound is computed from, but for the

@@ -64,6 +64,16 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
   std::vector<Entry>& queue = scratch;
   queue.clear();
   const double disk_magnitude = diskBoundMagnitude(disk);
+  const auto consider = [&](const Node* node, const Vec3& p_disk, const Vec3& p_cell,
+                            double distance) {
+    if (distance < answer.distance) {
+      answer.distance = distance;
+      answer.found = true;
+      answer.cell = node - root;
+      answer.p_disk = p_disk;
+      answer.p_cell = p_cell;
+    }
+  };
   const auto boxOf = [](const fcl::AABB<S>& cell, Vec3* centre, Vec3* half) {
     *centre = ((cell.min_ + cell.max_) / 2).template cast<double>();
     *half = ((cell.max_ - cell.min_) / 2).template cast<double>();
@@ -77,13 +87,7 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
       const LeafToDisk leaf =
           alignedBoxToDisk(disk, centre, half, disk.r + half.norm() + (disk.c - centre).norm());
       if (leaf.exact) {
-        if (leaf.distance < answer.distance) {
-          answer.distance = leaf.distance;
-          answer.found = true;
-          answer.cell = node - root;
-          answer.p_disk = leaf.p_disk;
-          answer.p_cell = leaf.p_leaf;
-        }
+        consider(node, leaf.p_disk, leaf.p_leaf, leaf.distance);
         return;
       }
       bound = leaf.distance;
@@ -107,15 +111,9 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
     if (!tree.nodeHasChildren(next.node)) {
       Vec3 centre, half;
       boxOf(next.cell, &centre, &half);
-      DiskShapeSolution solution =
+      const DiskShapeSolution solution =
           solveDiskBox(DiskInShape{disk.c - centre, disk.u, disk.v, disk.n, disk.r}, half);
-      if (solution.distance < answer.distance) {
-        answer.distance = solution.distance;
-        answer.found = true;
-        answer.cell = next.node - root;
-        answer.p_disk = solution.p + centre;
-        answer.p_cell = solution.q + centre;
-      }
+      consider(next.node, solution.p + centre, solution.q + centre, solution.distance);
     } else {
       for (unsigned int i = 0; i < 8; ++i) {
         if (!tree.nodeChildExists(next.node, i)) continue;
