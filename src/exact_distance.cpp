@@ -15,6 +15,7 @@ namespace {
 
 using internal::PairInFrame1;
 using internal::Vec2;
+using internal::Mat3;
 using internal::Vec3;
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
@@ -198,25 +199,41 @@ double faceLowerBound(const PairInFrame1& pair) {
   return std::max({0.0, pair.disk2ClearanceOfPlane1(), pair.disk1ClearanceOfPlane2()});
 }
 
-/// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1, with its gradient
-/// and Hessian in plane 1's coordinates (docs/exact_distance.md, section 4).
-/// The Hessian is kept in its factored form H = a I + b v v^T: the rim
-/// iteration needs only t^T H t, and only the model step needs the matrix.
+/// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1
+/// (docs/exact_distance.md, section 4), computed in two dimensions: x's
+/// coordinates y in disk 2's plane and its height h over it are affine in s,
+/// and proj_K2(x) is y itself (over disk 2's face) or y pulled onto the circle
+/// of radius r2 (over its rim). The gradient, the Hessian and the point in
+/// frame 1 are derived from these on demand: the rim iteration needs only
+/// psi's derivatives along the rim (alongRim), the model step the rest.
 struct PointToDisk2 {
-  Vec3 q;          ///< proj_K2(x), frame 1.
-  double psi;      ///< |x - q|^2 / 2.
-  Vec2 gradient;   ///< (x - q)_xy.
-  double hessian_identity;  ///< a: 0 over disk 2's face, 1 over its rim.
-  double hessian_rank_one;  ///< b: 1 over the face, -r2/rho over the rim.
-  Vec2 hessian_direction;   ///< v: m2 over the face, t_xy over the rim.
+  Vec2 y;              ///< x - c in disk 2's plane coordinates: R^T (x - c), first two.
+  double h;            ///< x's height over plane 2: n2.(x - c).
+  double inverse_rho;  ///< 1 / |y| over disk 2's rim, 0 over its face.
+  Vec2 nearest;        ///< proj_K2(x) in disk 2's plane coordinates.
+  double psi;          ///< |x - proj_K2(x)|^2 / 2.
 
-  double curvatureAlong(const Vec2& d) const {
-    const double vd = hessian_direction.dot(d);
-    return hessian_identity * d.squaredNorm() + hessian_rank_one * vd * vd;
+  /// proj_K2(x) in frame 1.
+  Vec3 q(const PairInFrame1& pair) const { return pair.pointOfDisk2(nearest); }
+  /// psi's gradient, (x - proj_K2(x))_xy = (R (y - nearest, h))_xy.
+  Vec2 gradient(const PairInFrame1& pair) const {
+    const Mat3& R = pair.R;
+    const Vec2 d = y - nearest;
+    return Vec2(R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * h,
+                R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * h);
   }
-  Eigen::Matrix2d hessian() const {
-    return hessian_identity * Eigen::Matrix2d::Identity() +
-           hessian_rank_one * hessian_direction * hessian_direction.transpose();
+  /// psi's Hessian a I + b v v^T: m2 m2^T over the face (m2 the in-plane part
+  /// of n2), I - (r2/rho) t t^T over the rim (t = n2 x e, e = y / rho, the
+  /// Hessian of dist^2/2 to a circle outside its disk).
+  Eigen::Matrix2d hessian(const PairInFrame1& pair) const {
+    const Mat3& R = pair.R;
+    if (inverse_rho == 0.0) {
+      const Vec2 m2(R(0, 2), R(1, 2));
+      return m2 * m2.transpose();
+    }
+    const Vec2 e = inverse_rho * y;
+    const Vec2 t(R(0, 1) * e.x() - R(0, 0) * e.y(), R(1, 1) * e.x() - R(1, 0) * e.y());
+    return Eigen::Matrix2d::Identity() - (pair.r2 * inverse_rho) * t * t.transpose();
   }
 };
 
@@ -228,36 +245,60 @@ enum class DistanceTo { disk2, rim2 };
 
 template <DistanceTo kTarget = DistanceTo::disk2>
 PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
-  const Vec3 x(s.x(), s.y(), 0.0);
-  const Vec3 from_c2 = x - pair.c;
-  const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));  // x in disk 2's plane
-  const double rho_squared = y.squaredNorm();
+  const Mat3& R = pair.R;
   PointToDisk2 out;
+  // R^T (x - c) = R^T x + c1_in_frame2, with x = (s, 0).
+  out.y = Vec2(R(0, 0) * s.x() + R(1, 0) * s.y() + pair.c1_in_frame2.x(),
+               R(0, 1) * s.x() + R(1, 1) * s.y() + pair.c1_in_frame2.y());
+  out.h = R(0, 2) * s.x() + R(1, 2) * s.y() + pair.c1_in_frame2.z();
+  const double rho_squared = out.y.squaredNorm();
   if (kTarget == DistanceTo::disk2 && rho_squared <= pair.r2 * pair.r2) {
-    // x projects into disk 2's face.
-    out.q = pair.c + y.x() * pair.R.col(0) + y.y() * pair.R.col(1);
-    // m2 = in-plane (frame 1) part of n2: the Hessian of height^2/2 over plane 2.
-    out.hessian_identity = 0.0;
-    out.hessian_rank_one = 1.0;
-    out.hessian_direction = Vec2(pair.R(0, 2), pair.R(1, 2));
-  } else {  // nearest point on disk 2's rim, radial direction e
+    out.inverse_rho = 0.0;
+    out.nearest = out.y;
+    out.psi = 0.5 * out.h * out.h;
+  } else {
     // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division
     // run side by side instead of one after the other (this is on the rim
     // iteration's critical path).
-    const double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
-    const Vec3 e = (y.x() * inverse_rho) * pair.R.col(0) + (y.y() * inverse_rho) * pair.R.col(1);
-    out.q = pair.c + pair.r2 * e;
-    // Hessian of dist^2/2 to a circle (to a circle's disk outside it):
-    // I - (r2/rho) t t^T, t = n2 x e.
-    const Vec3 t = pair.R.col(2).cross(e);
-    out.hessian_identity = 1.0;
-    out.hessian_rank_one = -pair.r2 * inverse_rho;
-    out.hessian_direction = Vec2(t.x(), t.y());
+    out.inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
+    out.nearest = (pair.r2 * out.inverse_rho) * out.y;
+    out.psi = 0.5 * ((out.y - out.nearest).squaredNorm() + out.h * out.h);
   }
-  const Vec3 residual = x - out.q;
-  out.psi = 0.5 * residual.squaredNorm();
-  out.gradient = residual.head<2>();
   return out;
+}
+
+/// psi's derivatives along disk 1's rim at x = r1 (radial, 0), in the angle
+/// theta: psi' = r1 sigma and psi'' = r1 (r1 curvature + outward), with
+/// sigma = g.t and outward = -g.radial (g the gradient, t = perp(radial)) and
+/// curvature = t^T H t. Computed from `at` (evaluated at x) and the rim's
+/// directions mapped into disk 2's frame, which do not depend on `at`: the
+/// iteration's critical path holds only the terms that do.
+struct AlongRim {
+  double sigma;
+  double outward;
+  double curvature;
+};
+
+AlongRim alongRim(const PairInFrame1& pair, const PointToDisk2& at, const Vec2& radial) {
+  const Mat3& R = pair.R;
+  const Vec2 tangent(-radial.y(), radial.x());
+  // R^T t and R^T radial (in-plane parts, and heights over plane 2).
+  const Vec2 t2(R(0, 0) * tangent.x() + R(1, 0) * tangent.y(),
+                R(0, 1) * tangent.x() + R(1, 1) * tangent.y());
+  const double t_height = R(0, 2) * tangent.x() + R(1, 2) * tangent.y();
+  const Vec2 radial2(R(0, 0) * radial.x() + R(1, 0) * radial.y(),
+                     R(0, 1) * radial.x() + R(1, 1) * radial.y());
+  const double radial_height = R(0, 2) * radial.x() + R(1, 2) * radial.y();
+  if (at.inverse_rho == 0.0) {  // over disk 2's face: g = m2 h, H = m2 m2^T
+    return {at.h * t_height, -at.h * radial_height, t_height * t_height};
+  }
+  // Over the rim: g = R (k y, h) with k = 1 - r2 / rho; t^T H t = 1 - (r2 /
+  // rho) (T.t)^2 with T = perp(y) / rho disk 2's rim tangent (|R^T t| = 1).
+  const double k = 1.0 - pair.r2 * at.inverse_rho;
+  const double across = at.y.x() * t2.y() - at.y.y() * t2.x();  // perp(y).t2, up to sign
+  const double inverse_rho_cubed = at.inverse_rho * at.inverse_rho * at.inverse_rho;
+  return {k * at.y.dot(t2) + at.h * t_height, -(k * at.y.dot(radial2) + at.h * radial_height),
+          1.0 - pair.r2 * inverse_rho_cubed * across * across};
 }
 
 /// The certificate at x (frame 1, on plane 1) and q on disk 2: the best of g
@@ -308,7 +349,7 @@ double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
 Vec2 exactLineSearch(const PairInFrame1& pair, const Vec2& s, const Vec2& step, double slope,
                      PointToDisk2* at_end) {
   PointToDisk2 next = evaluate(pair, s + step);
-  double derivative_hi = next.gradient.dot(step);
+  double derivative_hi = next.gradient(pair).dot(step);
   double alpha = 1.0;
   if (derivative_hi > 0.0) {
     double lo = 0.0, hi = 1.0, derivative_lo = slope;
@@ -318,7 +359,7 @@ Vec2 exactLineSearch(const PairInFrame1& pair, const Vec2& s, const Vec2& step, 
       alpha = (lo * derivative_hi - hi * derivative_lo) / (derivative_hi - derivative_lo);
       if (!(alpha > lo && alpha < hi)) alpha = 0.5 * (lo + hi);
       next = evaluate(pair, s + alpha * step);
-      const double derivative = next.gradient.dot(step);
+      const double derivative = next.gradient(pair).dot(step);
       if (derivative > 0.0) {
         hi = alpha, derivative_hi = derivative;
         if (last_side == 1) derivative_lo *= 0.5;  // Illinois: no stuck endpoint
@@ -399,6 +440,16 @@ Vec2 directionOf(const Vec2& v) {
   return length > 0.0 ? Vec2(v.x() / length, v.y() / length) : Vec2(1.0, 0.0);
 }
 
+/// s times the projection onto plane 1 of disk 2's rim point extreme towards
+/// plane 1 (PairInFrame1::rimPointTowardsPlane1), which needs no division by s:
+/// s c_xy - sign(c_z) r2 (R_xy m), with R_xy the top-left 2x2 block of R.
+Vec2 scaledFootOfDisk2(const PairInFrame1& pair) {
+  const Mat3& R = pair.R;
+  const double side_r2 = pair.c.z() > 0.0 ? pair.r2 : -pair.r2;
+  return Vec2(pair.s * pair.c.x() - side_r2 * (R(0, 0) * pair.m.x() + R(0, 1) * pair.m.y()),
+              pair.s * pair.c.y() - side_r2 * (R(1, 0) * pair.m.x() + R(1, 1) * pair.m.y()));
+}
+
 /// Where the rim iteration starts (only its speed depends on it; measured in
 /// docs/exact_distance.md, section 4): disk 1's rim point towards where disk 2
 /// comes nearest plane 1, projected: the point of disk 2's chord on plane 1
@@ -417,8 +468,117 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
     return directionOf(Vec2(chord.X0.x() + tau * chord.T.x(), chord.X0.y() + tau * chord.T.y()));
   }
   if (pair.disk1ClearanceOfPlane2() <= 0.0) return directionOf(towards_c2);
-  const Vec3 towards_plane1 = pair.rimPointTowardsPlane1();
-  return directionOf(Vec2(towards_plane1.x(), towards_plane1.y()));
+  return directionOf(scaledFootOfDisk2(pair));  // towards rimPointTowardsPlane1()
+}
+
+/// Plain Newton along disk 1's rim, the path nearly every rim-rim query
+/// takes to its answer, written as one short chain of arithmetic (the
+/// iteration is latency-bound): x = r1 radial is carried in disk 2's frame as
+/// the unitless radial2 = R_xy^T radial and radial_height = m2.radial, so a
+/// rotation of radial by (cos, sin) moves y and h by the same rotation of
+/// (radial2, radial_height) and (tangent2, tangent_height), with no matrix
+/// product on the chain. The steps are rimRim's (alongRim's sigma and kappa,
+/// the Cayley rotation); the certificate is tried once the step Newton's
+/// quadratic convergence predicts from the last two, dtheta_k^3 /
+/// dtheta_(k-1)^2, would pass rimRim's `converging` test, so a query ends
+/// with the evaluation of its last point and no step it would not take.
+/// Returns the certified answer, or nullopt with *radial at the last point
+/// reached when a step is not a plain one: x over disk 2's face, the gradient
+/// pointing into disk 1, no positive curvature, a clamped step, psi not
+/// decreasing, or a certificate that does not close. rimRim then goes on from
+/// there. *steps receives the number of steps taken.
+std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double face_lower_bound,
+                                  Vec2* radial_io, int* steps) {
+  const Mat3& R = pair.R;
+  const double r1 = pair.r1, r2 = pair.r2;
+  const Vec2 y0 = pair.c1_in_frame2.head<2>();
+  const double h0 = pair.c1_in_frame2.z();
+  const double gap_tolerance = kGapTolerance * scale;
+  const double certify_below = kCertifyStep * scale;
+  // radial and its images in disk 2's frame, and the point's y, h, 1/rho, k = 1 - r2/rho, psi.
+  Vec2 radial = *radial_io;
+  Vec2 radial2(R(0, 0) * radial.x() + R(1, 0) * radial.y(),
+               R(0, 1) * radial.x() + R(1, 1) * radial.y());
+  double radial_height = R(0, 2) * radial.x() + R(1, 2) * radial.y();
+  Vec2 y = r1 * radial2 + y0;
+  double h = r1 * radial_height + h0;
+  double rho_squared = y.squaredNorm();
+  if (!(rho_squared > r2 * r2)) return std::nullopt;
+  double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
+  double k = 1.0 - r2 * inverse_rho;
+  double psi = 0.5 * (k * k * rho_squared + h * h);
+  double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
+  // rimRim's `converging` test for a step dtheta with curvature kappa.
+  const auto converging = [&](double dtheta, double kappa, double distance) {
+    return dtheta * r1 <= certify_below &&
+           0.5 * r1 * kappa * dtheta * dtheta <= distance * gap_tolerance;
+  };
+  std::optional<double> lower;  // the certificate at the current point, once tried
+  const auto certified = [&]() -> bool {
+    const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
+    lower = separationCertificate(pair, x, pair.pointOfDisk2((r2 * inverse_rho) * y),
+                                  face_lower_bound);
+    return std::sqrt(2.0 * psi) - *lower <= gap_tolerance;
+  };
+  const auto answer = [&](int steps_taken) {
+    const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
+    return Solution{x, pair.pointOfDisk2((r2 * inverse_rho) * y), std::sqrt(2.0 * psi),
+                    DiskPairFeature::rim_rim, steps_taken + 1, *lower};
+  };
+  *steps = 0;
+  for (int step = 0; step < kMaxNewtonIterations; ++step) {
+    lower.reset();
+    if (step_before > 0.0) {
+      const double ratio = last_step / step_before;
+      if (converging(last_step * ratio * ratio, last_kappa, std::sqrt(2.0 * psi))) {
+        if (certified()) return answer(step);
+      }
+    }
+    // alongRim over disk 2's rim, with the tangent's images.
+    const Vec2 tangent2(R(1, 0) * radial.x() - R(0, 0) * radial.y(),
+                        R(1, 1) * radial.x() - R(0, 1) * radial.y());
+    const double tangent_height = R(1, 2) * radial.x() - R(0, 2) * radial.y();
+    const double sigma = k * y.dot(tangent2) + h * tangent_height;
+    const double outward = -(k * y.dot(radial2) + h * radial_height);
+    const double across = y.x() * tangent2.y() - y.y() * tangent2.x();
+    const double across_over_rho = across * inverse_rho;
+    const double kappa =
+        (r1 + outward) - ((r1 * r2) * inverse_rho) * (across_over_rho * across_over_rho);
+    const double four_kappa_squared = 4.0 * kappa * kappa;
+    const double denominator = four_kappa_squared + sigma * sigma;
+    if (!(outward >= 0.0 && kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
+          denominator >= std::numeric_limits<double>::min())) {
+      break;
+    }
+    const double dtheta = std::abs(sigma) / kappa;
+    if (!lower && converging(dtheta, kappa, std::sqrt(2.0 * psi))) {
+      if (certified()) return answer(step);
+      if (dtheta * r1 <= kStepAtRounding * scale) break;  // rimRim reports it
+    }
+    const double inverse = 1.0 / denominator;
+    const double cos = (four_kappa_squared - sigma * sigma) * inverse;
+    const double sin = -4.0 * sigma * kappa * inverse;
+    const Vec2 next_radial2 = cos * radial2 + sin * tangent2;
+    const double next_radial_height = cos * radial_height + sin * tangent_height;
+    const Vec2 next_y = r1 * next_radial2 + y0;
+    const double next_h = r1 * next_radial_height + h0;
+    const double next_rho_squared = next_y.squaredNorm();
+    if (!(next_rho_squared > r2 * r2)) break;
+    const double next_inverse_rho = std::sqrt(next_rho_squared) * (1.0 / next_rho_squared);
+    const double next_k = 1.0 - r2 * next_inverse_rho;
+    const double next_psi = 0.5 * (next_k * next_k * next_rho_squared + next_h * next_h);
+    if (!(next_psi < psi) || psi - next_psi <= kStagnation * scale * scale) break;
+    radial = Vec2(cos * radial.x() - sin * radial.y(), cos * radial.y() + sin * radial.x());
+    radial2 = next_radial2, radial_height = next_radial_height;
+    y = next_y, h = next_h, rho_squared = next_rho_squared, inverse_rho = next_inverse_rho;
+    k = next_k, psi = next_psi;
+    step_before = last_step;
+    last_step = dtheta;
+    last_kappa = kappa;
+    *steps = step + 1;
+  }
+  *radial_io = radial;
+  return std::nullopt;
 }
 
 /// Rim-rim case: minimise the convex psi(s) = dist(x(s), K2)^2 / 2 over disk 1
@@ -430,31 +590,35 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// search. Iterates stay feasible and psi decreases, so by convexity they reach
 /// the global minimum. Each iterate is a feasible pair (an upper bound); once
 /// the steps are small the duality certificate (a lower bound) is evaluated and
-/// the iteration stops when the two agree to kGapTolerance * scale.
+/// the iteration stops when the two agree to kGapTolerance * scale. It starts
+/// with rimNewton, the same iteration while its steps are plain Newton steps.
 Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound) {
   const double r1 = pair.r1;
   // Start on the rim (the optimum is on the rim), at rimStartDirection.
   // `radial` is s's direction while s is on the rim (s == r1 * radial), carried
   // from step to step so that rim iterations need no normalisation.
   Vec2 radial = rimStartDirection(pair);
+  int steps = 0;
+  if (auto answer = rimNewton(pair, scale, face_lower_bound, &radial, &steps)) return *answer;
+  const int first_iteration = steps + 1;
   Vec2 s = r1 * radial;
   bool s_on_rim = true;
   PointToDisk2 at = evaluate(pair, s);
   const double gap_tolerance = kGapTolerance * scale;
   const double certify_below = kCertifyStep * scale;
   const double tiny_psi = 0.5 * gap_tolerance * gap_tolerance;  // distance within tolerance of 0
-  Solution current{Vec3(s.x(), s.y(), 0.0), at.q, 0.0, DiskPairFeature::rim_rim};
+  Solution current{Vec3::Zero(), Vec3::Zero(), 0.0, DiskPairFeature::rim_rim};
   // `lower`: the certificate at the current iterate, when already evaluated.
   auto finish = [&](int iteration, std::optional<double> lower = std::nullopt) {
     current.p = Vec3(s.x(), s.y(), 0.0);
-    current.q = at.q;
+    current.q = at.q(pair);
     current.distance = std::sqrt(2.0 * at.psi);
     current.iterations = iteration;
     current.lower_bound =
-        lower ? *lower : certificate(pair, current.p, at.q, face_lower_bound);
+        lower ? *lower : certificate(pair, current.p, current.q, face_lower_bound);
     return current;
   };
-  for (int iteration = 1; iteration <= kMaxNewtonIterations; ++iteration) {
+  for (int iteration = first_iteration; iteration <= kMaxNewtonIterations; ++iteration) {
     bool near_rim = s_on_rim;
     if (!s_on_rim) {  // after a model step: |s| > 0, iterates stay near the rim or inside it
       const double radius = s.norm();
@@ -464,12 +628,14 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     const Vec2 tangent(-radial.y(), radial.x());
     // Multiplier of |s| <= r1: lambda = outward / r1 >= 0 iff -gradient points
     // out of the disk; slightly negative within kInwardGradientTolerance * |g|
-    // (compared squared: no square root).
-    const double outward = -at.gradient.dot(radial);
+    // (compared squared, |g|^2 = sigma^2 + outward^2: no square root).
+    const AlongRim along = near_rim ? alongRim(pair, at, radial) : AlongRim{0.0, -1.0, 0.0};
+    const double outward = along.outward;
+    const double tolerance_squared = kInwardGradientTolerance * kInwardGradientTolerance;
     const bool on_rim =
-        near_rim && (outward >= 0.0 || outward * outward <= kInwardGradientTolerance *
-                                                                 kInwardGradientTolerance *
-                                                                 at.gradient.squaredNorm());
+        near_rim && (outward >= 0.0 || outward * outward <= tolerance_squared *
+                                                                (along.sigma * along.sigma +
+                                                                 outward * outward));
     double dtheta = 0.0;
     double predicted_decrease = 0.0;  // of psi, by the rim Newton step
     Vec2 rotation(1.0, 0.0);          // (cos, sin) of the first rim step tried
@@ -477,8 +643,8 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
       // Newton in the rim angle theta: psi' = r1 sigma, psi'' = r1 kappa with
       // sigma = g.t and kappa = r1 t'Ht + lambda r1 (both lengths), so
       // dtheta = -sigma / kappa.
-      const double sigma = at.gradient.dot(tangent);
-      const double kappa = r1 * at.curvatureAlong(tangent) + std::max(outward, 0.0);
+      const double sigma = along.sigma;
+      const double kappa = r1 * along.curvature + std::max(outward, 0.0);
       // The Cayley rotation of h = dtheta / 2 = -sigma / (2 kappa), written over
       // the common denominator 4 kappa^2 + sigma^2: its division is independent
       // of dtheta's, so the two run side by side (squares of lengths stay in
@@ -508,7 +674,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
                             predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
-      const double lower = separationCertificate(pair, x, at.q, face_lower_bound);
+      const double lower = separationCertificate(pair, x, at.q(pair), face_lower_bound);
       if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration, lower);
       // Converged to rounding: the step no longer moves the point. The
       // certificate's own rounding along q - x grows like scale * (eps * scale
@@ -534,8 +700,9 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
       s_on_rim = moved;
     }
     if (!moved) {
-      const Vec2 step = stepOnDisk(at.hessian(), at.gradient, s, r1);
-      const double slope = at.gradient.dot(step);
+      const Vec2 gradient = at.gradient(pair);
+      const Vec2 step = stepOnDisk(at.hessian(pair), gradient, s, r1);
+      const double slope = gradient.dot(step);
       if (!(slope < 0.0)) break;  // stationary to rounding
       s_next = s + exactLineSearch(pair, s, step, slope, &next);
       moved = next.psi < at.psi;
@@ -584,8 +751,9 @@ Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
   const Vec2 s = rimPoint(pair, a_wins ? a : b);
   const PointToDisk2& at = a_wins ? at_a : at_b;
   const Vec3 x(s.x(), s.y(), 0.0);
-  return {x, at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
-          certificate(pair, x, at.q, face_lower_bound)};
+  const Vec3 q = at.q(pair);
+  return {x, q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
+          certificate(pair, x, q, face_lower_bound)};
 }
 
 /// The better of two rim-rim answers: the nearer pair, and the larger of the
@@ -651,8 +819,9 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
     const Vec2 tangent(-radial.y(), radial.x());
     // As in rimRim: phi' = r1 sigma, phi'' = r1 kappa, here with the rim's
     // curvature term unclamped (phi is minimised along the circle, not the disk).
-    const double sigma = at.gradient.dot(tangent);
-    const double kappa = pair.r1 * at.curvatureAlong(tangent) - at.gradient.dot(radial);
+    const AlongRim along = alongRim(pair, at, radial);
+    const double sigma = along.sigma;
+    const double kappa = pair.r1 * along.curvature + along.outward;
     if (!(kappa > 0.0)) break;
     const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
     const Vec2 rotation = cayleyRotation(dtheta);
@@ -663,8 +832,9 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
     if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
   }
   const Vec3 x(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0);
-  return {x, at.q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
-          certificate(pair, x, at.q, face_lower_bound)};
+  const Vec3 q = at.q(pair);
+  return {x, q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
+          certificate(pair, x, q, face_lower_bound)};
 }
 
 /// Whether a rim-rim answer's points, not only its distance, are proven: the

@@ -50,6 +50,7 @@ struct PairInFrame1 {
   double r2;  ///< radius of disk 2.
   Vec2 m;     ///< heights over plane 1 of disk 2's in-plane axes: (u_z, v_z).
   double s;   ///< |m| = sine of the angle between the planes.
+  Vec3 c1_in_frame2;  ///< disk 1's centre in disk 2's frame: -R^T c = -(u.c, v.c, n.c).
 
   /// From world poses; all arithmetic in double, relative to c1 (so a common
   /// translation, however large, costs only the rounding of c2 - c1).
@@ -64,7 +65,7 @@ struct PairInFrame1 {
   }
 
   static PairInFrame1 make(const Vec3& c, const Mat3& R, double r1, double r2) {
-    PairInFrame1 pair{c, R, r1, r2, Vec2(R(2, 0), R(2, 1)), 0.0};
+    PairInFrame1 pair{c, R, r1, r2, Vec2(R(2, 0), R(2, 1)), 0.0, -(R.transpose() * c)};
     pair.s = std::sqrt(pair.m.squaredNorm());
     return pair;
   }
@@ -75,7 +76,7 @@ struct PairInFrame1 {
   double scale() const { return r1 + r2 + c.norm(); }
 
   /// The same pair seen from disk 2: disk 1 becomes "disk 2" in disk 2's frame.
-  PairInFrame1 swapped() const { return make(-(R.transpose() * c), R.transpose(), r2, r1); }
+  PairInFrame1 swapped() const { return make(c1_in_frame2, R.transpose(), r2, r1); }
 
   /// Maps a point of disk-2-in-plane coordinates (a, b) to frame 1.
   Vec3 pointOfDisk2(const Vec2& ab) const { return c + ab.x() * R.col(0) + ab.y() * R.col(1); }
@@ -84,7 +85,7 @@ struct PairInFrame1 {
   /// c_z +- r2 s), > 0 iff it lies wholly on one side, <= 0 iff it crosses.
   double disk2ClearanceOfPlane1() const { return std::abs(c.z()) - r2 * s; }
   /// The same for disk 1 and plane 2 (c1 is at height -n.c over plane 2).
-  double disk1ClearanceOfPlane2() const { return std::abs(R.col(2).dot(c)) - r1 * s; }
+  double disk1ClearanceOfPlane2() const { return std::abs(c1_in_frame2.z()) - r1 * s; }
 
   /// The rim point of disk 2 extreme towards plane 1 (lowest if c is above
   /// it): direction -sign(c_z) m / s in disk 2's plane. Requires s > 0.
@@ -178,6 +179,11 @@ inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
     const Vec2 point = pair.pointOnCentreLine(std::clamp(*t, -pair.r1, pair.r1));
     return Vec3(point.x(), point.y(), 0.5 * cz);
   }
+  // Disk 1 must cross plane 2 too: plane 2 meets plane 1 in a line at
+  // distance |n2.c| / s from c1, so a line farther than r1 misses disk 1. This
+  // rejects most pairs before the chord's divisions and square roots (the
+  // test below, with its slack scaled by s <= 1, is the stricter one).
+  if (!(std::abs(pair.c1_in_frame2.z()) <= pair.r1 * pair.s + slack)) return std::nullopt;
   const ChordOnPlane1 chord = chordOfDisk2OnPlane1(pair);
   const Vec2 X0_xy(chord.X0.x(), chord.X0.y());
   const Vec2 T_xy(chord.T.x(), chord.T.y());
