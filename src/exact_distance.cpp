@@ -33,6 +33,12 @@ constexpr double kGapTolerance = 1e-14;
 constexpr double kStagnation = 4 * kEps * kEps;
 constexpr double kStepAtRounding = 4 * kEps;
 
+/// psi = d^2 / 2 is known to about d * kPsiRounding * eps * scale (its points
+/// carry rounding of a few eps * scale): a rim step predicted to decrease psi
+/// by less cannot be seen to, and once the certificate is due the iteration
+/// reports instead of halving such steps.
+constexpr double kPsiRounding = 4.0;
+
 /// Relative Tikhonov term tau = kModelRegularisation * trace(H) of the
 /// disk-constrained model: negligible against any real curvature, it only pins
 /// the step along psi's flat directions.
@@ -676,11 +682,16 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
       const Vec3 x(s.x(), s.y(), 0.0);
       const double lower = separationCertificate(pair, x, at.q(pair), face_lower_bound);
       if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration, lower);
-      // Converged to rounding: the step no longer moves the point. The
-      // certificate's own rounding along q - x grows like scale * (eps * scale
-      // / d)^2 for small distances d, so it may not reach kGapTolerance; the
-      // full certificate (with t1 x t2) is reported.
-      if (on_rim && std::abs(dtheta) * r1 <= kStepAtRounding * scale) return finish(iteration);
+      // Converged to rounding: the step no longer moves the point, or the
+      // decrease it predicts is below the rounding of psi itself (d times the
+      // eps * scale rounding of the points), so no step can be seen to
+      // decrease psi. The certificate's own rounding along q - x grows like
+      // scale * (eps * scale / d)^2 for small distances d, so it may not
+      // reach kGapTolerance; the full certificate (with t1 x t2) is reported.
+      const bool step_at_rounding = std::abs(dtheta) * r1 <= kStepAtRounding * scale;
+      const bool decrease_at_rounding =
+          predicted_decrease <= kPsiRounding * kEps * scale * std::sqrt(2.0 * at.psi);
+      if (on_rim && (step_at_rounding || decrease_at_rounding)) return finish(iteration);
     }
     PointToDisk2 next;
     Vec2 s_next;
