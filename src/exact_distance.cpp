@@ -488,11 +488,15 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// quadratic convergence predicts from the last two, dtheta_k^3 /
 /// dtheta_(k-1)^2, would pass rimRim's `converging` test, so a query ends
 /// with the evaluation of its last point and no step it would not take.
-/// Returns the certified answer, or nullopt with *radial at the last point
-/// reached when a step is not a plain one: x over disk 2's face, the gradient
-/// pointing into disk 1, no positive curvature, a clamped step, psi not
-/// decreasing, or a certificate that does not close. rimRim then goes on from
-/// there. *steps receives the number of steps taken.
+/// x may lie over disk 2's rim (nearest = (r2 / rho) y) or its face (nearest =
+/// y, psi = h^2 / 2), and the gradient may point into disk 1 on the way (the
+/// multiplier term of kappa is then dropped, as in rimRim); the optimum is on
+/// the rim (section 4), so only a point where the rim steps stall with the
+/// gradient pointing inwards needs rimRim's model step. Returns the certified
+/// answer, or nullopt with *radial at the last point reached when a step is
+/// not a plain one: such a stall, no positive curvature, a clamped step, psi
+/// not decreasing, or a certificate that does not close. rimRim then goes on
+/// from there. *steps receives the number of steps taken.
 std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double face_lower_bound,
                                   Vec2* radial_io, int* steps) {
   const Mat3& R = pair.R;
@@ -508,10 +512,13 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   double radial_height = R(0, 2) * radial.x() + R(1, 2) * radial.y();
   Vec2 y = r1 * radial2 + y0;
   double h = r1 * radial_height + h0;
+  // Over disk 2's rim proj_K2 pulls y onto the circle: nearest = (r2 / rho) y;
+  // over its face it is y itself (to_rim = 1, inverse_rho unused).
   double rho_squared = y.squaredNorm();
-  if (!(rho_squared > r2 * r2)) return std::nullopt;
-  double inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
-  double k = 1.0 - r2 * inverse_rho;
+  bool over_face = !(rho_squared > r2 * r2);
+  double inverse_rho = over_face ? 0.0 : std::sqrt(rho_squared) * (1.0 / rho_squared);
+  double to_rim = over_face ? 1.0 : r2 * inverse_rho;
+  double k = 1.0 - to_rim;
   double psi = 0.5 * (k * k * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
   // rimRim's `converging` test for a step dtheta with curvature kappa.
@@ -522,13 +529,12 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   std::optional<double> lower;  // the certificate at the current point, once tried
   const auto certified = [&]() -> bool {
     const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-    lower = separationCertificate(pair, x, pair.pointOfDisk2((r2 * inverse_rho) * y),
-                                  face_lower_bound);
+    lower = separationCertificate(pair, x, pair.pointOfDisk2(to_rim * y), face_lower_bound);
     return std::sqrt(2.0 * psi) - *lower <= gap_tolerance;
   };
   const auto answer = [&](int steps_taken) {
     const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-    return Solution{x, pair.pointOfDisk2((r2 * inverse_rho) * y), std::sqrt(2.0 * psi),
+    return Solution{x, pair.pointOfDisk2(to_rim * y), std::sqrt(2.0 * psi),
                     DiskPairFeature::rim_rim, steps_taken + 1, *lower};
   };
   *steps = 0;
@@ -549,14 +555,17 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     const double across = y.x() * tangent2.y() - y.y() * tangent2.x();
     const double across_over_rho = across * inverse_rho;
     const double kappa =
-        (r1 + outward) - ((r1 * r2) * inverse_rho) * (across_over_rho * across_over_rho);
+        over_face ? r1 * tangent_height * tangent_height + std::max(outward, 0.0)
+                  : (r1 + std::max(outward, 0.0)) -
+                        ((r1 * r2) * inverse_rho) * (across_over_rho * across_over_rho);
     const double four_kappa_squared = 4.0 * kappa * kappa;
     const double denominator = four_kappa_squared + sigma * sigma;
-    if (!(outward >= 0.0 && kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
+    if (!(kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
           denominator >= std::numeric_limits<double>::min())) {
       break;
     }
     const double dtheta = std::abs(sigma) / kappa;
+    if (outward < 0.0 && converging(dtheta, kappa, std::sqrt(2.0 * psi))) break;
     if (!lower && converging(dtheta, kappa, std::sqrt(2.0 * psi))) {
       if (certified()) return answer(step);
       if (dtheta * r1 <= kStepAtRounding * scale) break;  // rimRim reports it
@@ -569,15 +578,17 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     const Vec2 next_y = r1 * next_radial2 + y0;
     const double next_h = r1 * next_radial_height + h0;
     const double next_rho_squared = next_y.squaredNorm();
-    if (!(next_rho_squared > r2 * r2)) break;
-    const double next_inverse_rho = std::sqrt(next_rho_squared) * (1.0 / next_rho_squared);
-    const double next_k = 1.0 - r2 * next_inverse_rho;
+    const bool next_over_face = !(next_rho_squared > r2 * r2);
+    const double next_inverse_rho =
+        next_over_face ? 0.0 : std::sqrt(next_rho_squared) * (1.0 / next_rho_squared);
+    const double next_to_rim = next_over_face ? 1.0 : r2 * next_inverse_rho;
+    const double next_k = 1.0 - next_to_rim;
     const double next_psi = 0.5 * (next_k * next_k * next_rho_squared + next_h * next_h);
     if (!(next_psi < psi) || psi - next_psi <= kStagnation * scale * scale) break;
     radial = Vec2(cos * radial.x() - sin * radial.y(), cos * radial.y() + sin * radial.x());
     radial2 = next_radial2, radial_height = next_radial_height;
-    y = next_y, h = next_h, rho_squared = next_rho_squared, inverse_rho = next_inverse_rho;
-    k = next_k, psi = next_psi;
+    y = next_y, h = next_h, rho_squared = next_rho_squared, over_face = next_over_face;
+    inverse_rho = next_inverse_rho, to_rim = next_to_rim, k = next_k, psi = next_psi;
     step_before = last_step;
     last_step = dtheta;
     last_kappa = kappa;
