@@ -834,9 +834,8 @@ int lensCorners(const PairInFrame1& pair, double scale, std::array<Vec2, 2>* cor
 /// circle, which is smooth across the corner (where psi's curvature jumps).
 /// Always a feasible pair (a point of each rim); the certificate says whether
 /// it is the optimum.
-Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, double scale,
+Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at, double scale,
                           double face_lower_bound) {
-  PointToDisk2 at = evaluate<DistanceTo::rim2>(pair, pair.r1 * radial);
   for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
     const Vec2 tangent(-radial.y(), radial.x());
     // As in rimRim: phi' = r1 sigma, phi'' = r1 kappa, here with the rim's
@@ -891,9 +890,17 @@ std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double 
                                                double face_lower_bound) {
   std::array<Vec2, 2> corners;
   const int count = lensCorners(pair, scale, &corners);
+  std::array<PointToDisk2, 2> at;
+  for (int k = 0; k < count; ++k) at[k] = evaluate<DistanceTo::rim2>(pair, pair.r1 * corners[k]);
+  // The nearer corner first: the optimum is usually there, and a proven
+  // corner ends the search.
+  if (count == 2 && at[1].psi < at[0].psi) {
+    std::swap(corners[0], corners[1]);
+    std::swap(at[0], at[1]);
+  }
   std::optional<CornerAnswer> best;
   for (int k = 0; k < count; ++k) {
-    const Solution found = rimRimFromCorner(pair, corners[k], scale, face_lower_bound);
+    const Solution found = rimRimFromCorner(pair, corners[k], at[k], scale, face_lower_bound);
     if (pointsProven(pair, found, scale, face_lower_bound)) return CornerAnswer{found, true};
     best = CornerAnswer{best ? nearer(best->solution, found) : found, false};
   }
