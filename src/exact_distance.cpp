@@ -33,11 +33,13 @@ constexpr double kGapTolerance = 1e-14;
 constexpr double kStagnation = 4 * kEps * kEps;
 constexpr double kStepAtRounding = 4 * kEps;
 
-/// psi = d^2 / 2 is known to about d * kPsiRounding * eps * scale (its points
-/// carry rounding of a few eps * scale): a rim step predicted to decrease psi
-/// by less cannot be seen to, and once the certificate is due the iteration
-/// reports instead of halving such steps.
-constexpr double kPsiRounding = 4.0;
+/// A rim step predicted to decrease psi = d^2 / 2 by less than d *
+/// kPsiRounding * eps * scale cannot be seen to (psi's rounding is about d
+/// times the eps * scale rounding of the points), so once the certificate is
+/// due the iteration reports instead of taking it. A quarter of that rounding:
+/// a step stopped too early leaves the certificate open and costs the
+/// fallback searches; one taken too many costs one step.
+constexpr double kPsiRounding = 0.25;
 
 /// Relative Tikhonov term tau = kModelRegularisation * trace(H) of the
 /// disk-constrained model: negligible against any real curvature, it only pins
@@ -566,9 +568,14 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     }
     const double dtheta = std::abs(sigma) / kappa;
     if (outward < 0.0 && converging(dtheta, kappa, std::sqrt(2.0 * psi))) break;
-    if (!lower && converging(dtheta, kappa, std::sqrt(2.0 * psi))) {
-      if (certified()) return answer(step);
-      if (dtheta * r1 <= kStepAtRounding * scale) break;  // rimRim reports it
+    const double distance = std::sqrt(2.0 * psi);
+    if (converging(dtheta, kappa, distance)) {
+      if (!lower && certified()) return answer(step);
+      // At rounding (rimRim's tests): rimRim reports the point.
+      if (dtheta * r1 <= kStepAtRounding * scale ||
+          0.5 * r1 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
+        break;
+      }
     }
     const double inverse = 1.0 / denominator;
     const double cos = (four_kappa_squared - sigma * sigma) * inverse;
