@@ -528,15 +528,22 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     return dtheta * r1 <= certify_below &&
            0.5 * r1 * kappa * dtheta * dtheta <= distance * gap_tolerance;
   };
-  std::optional<double> lower;  // the certificate at the current point, once tried
+  // The certificate at the current point, once tried, and the distance |q - x|
+  // it is compared with (the points themselves, not psi: for a rotation that
+  // is orthonormal only to rounding, say a float pose widened to double, psi's
+  // two-dimensional form and |q - x| differ by that rounding).
+  std::optional<double> lower;
+  double distance_of_points = 0.0;
   const auto certified = [&]() -> bool {
     const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-    lower = separationCertificate(pair, x, pair.pointOfDisk2(to_rim * y), face_lower_bound);
-    return std::sqrt(2.0 * psi) - *lower <= gap_tolerance;
+    const Vec3 q = pair.pointOfDisk2(to_rim * y);
+    distance_of_points = (q - x).norm();
+    lower = separationCertificate(pair, x, q, face_lower_bound);
+    return distance_of_points - *lower <= gap_tolerance;
   };
   const auto answer = [&](int steps_taken) {
     const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-    return Solution{x, pair.pointOfDisk2(to_rim * y), std::sqrt(2.0 * psi),
+    return Solution{x, pair.pointOfDisk2(to_rim * y), distance_of_points,
                     DiskPairFeature::rim_rim, steps_taken + 1, *lower};
   };
   *steps = 0;
@@ -636,7 +643,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   auto finish = [&](int iteration, std::optional<double> lower = std::nullopt) {
     current.p = Vec3(s.x(), s.y(), 0.0);
     current.q = at.q(pair);
-    current.distance = std::sqrt(2.0 * at.psi);
+    current.distance = (current.q - current.p).norm();
     current.iterations = iteration;
     current.lower_bound =
         lower ? *lower : certificate(pair, current.p, current.q, face_lower_bound);
@@ -698,8 +705,9 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
                             predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
-      const double lower = separationCertificate(pair, x, at.q(pair), face_lower_bound);
-      if (std::sqrt(2.0 * at.psi) - lower <= gap_tolerance) return finish(iteration, lower);
+      const Vec3 q = at.q(pair);
+      const double lower = separationCertificate(pair, x, q, face_lower_bound);
+      if ((q - x).norm() - lower <= gap_tolerance) return finish(iteration, lower);
       // Converged to rounding: the step no longer moves the point, or the
       // decrease it predicts is below the rounding of psi itself (d times the
       // eps * scale rounding of the points), so no step can be seen to
@@ -781,7 +789,7 @@ Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
   const PointToDisk2& at = a_wins ? at_a : at_b;
   const Vec3 x(s.x(), s.y(), 0.0);
   const Vec3 q = at.q(pair);
-  return {x, q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
+  return {x, q, (q - x).norm(), DiskPairFeature::rim_rim, 0,
           certificate(pair, x, q, face_lower_bound)};
 }
 
@@ -861,7 +869,7 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at
   }
   const Vec3 x(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0);
   const Vec3 q = at.q(pair);
-  return {x, q, std::sqrt(2.0 * at.psi), DiskPairFeature::rim_rim, 0,
+  return {x, q, (q - x).norm(), DiskPairFeature::rim_rim, 0,
           certificate(pair, x, q, face_lower_bound)};
 }
 
