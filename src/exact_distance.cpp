@@ -208,28 +208,22 @@ double faceLowerBound(const PairInFrame1& pair) {
 }
 
 /// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1
-/// (docs/exact_distance.md, section 4), computed in two dimensions: x's
-/// coordinates y in disk 2's plane and its height h over it are affine in s,
-/// and proj_K2(x) is y itself (over disk 2's face) or y pulled onto the circle
-/// of radius r2 (over its rim). The gradient, the Hessian and the point in
-/// frame 1 are derived from these on demand: the rim iteration needs only
-/// psi's derivatives along the rim (alongRim), the model step the rest.
+/// (docs/exact_distance.md, section 4). proj_K2(x) is found in two dimensions:
+/// x's coordinates y in disk 2's plane and its height h over it are affine in
+/// s, and the projection is y itself (over disk 2's face) or y pulled onto the
+/// circle of radius r2 (over its rim). psi and its gradient are then taken from
+/// the points themselves, q - x in frame 1, so that they stay consistent with
+/// the certificate's q - x when R is orthonormal only to rounding (a float pose
+/// widened to double); the Hessian, which only shapes the steps, comes from the
+/// two-dimensional pieces on demand.
 struct PointToDisk2 {
   Vec2 y;              ///< x - c in disk 2's plane coordinates: R^T (x - c), first two.
   double h;            ///< x's height over plane 2: n2.(x - c).
   double inverse_rho;  ///< 1 / |y| over disk 2's rim, 0 over its face.
-  Vec2 nearest;        ///< proj_K2(x) in disk 2's plane coordinates.
-  double psi;          ///< |x - proj_K2(x)|^2 / 2.
+  Vec3 q;              ///< proj_K2(x), frame 1.
+  double psi;          ///< |x - q|^2 / 2.
+  Vec2 gradient;       ///< (x - q)_xy.
 
-  /// proj_K2(x) in frame 1.
-  Vec3 q(const PairInFrame1& pair) const { return pair.pointOfDisk2(nearest); }
-  /// psi's gradient, (x - proj_K2(x))_xy = (R (y - nearest, h))_xy.
-  Vec2 gradient(const PairInFrame1& pair) const {
-    const Mat3& R = pair.R;
-    const Vec2 d = y - nearest;
-    return Vec2(R(0, 0) * d.x() + R(0, 1) * d.y() + R(0, 2) * h,
-                R(1, 0) * d.x() + R(1, 1) * d.y() + R(1, 2) * h);
-  }
   /// psi's Hessian a I + b v v^T: m2 m2^T over the face (m2 the in-plane part
   /// of n2), I - (r2/rho) t t^T over the rim (t = n2 x e, e = y / rho, the
   /// Hessian of dist^2/2 to a circle outside its disk).
@@ -260,27 +254,25 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
                R(0, 1) * s.x() + R(1, 1) * s.y() + pair.c1_in_frame2.y());
   out.h = R(0, 2) * s.x() + R(1, 2) * s.y() + pair.c1_in_frame2.z();
   const double rho_squared = out.y.squaredNorm();
-  if (kTarget == DistanceTo::disk2 && rho_squared <= pair.r2 * pair.r2) {
-    out.inverse_rho = 0.0;
-    out.nearest = out.y;
-    out.psi = 0.5 * out.h * out.h;
-  } else {
+  Vec2 nearest = out.y;  // proj_K2(x) in disk 2's plane coordinates
+  out.inverse_rho = 0.0;
+  if (!(kTarget == DistanceTo::disk2 && rho_squared <= pair.r2 * pair.r2)) {
     // 1/rho as sqrt(rho^2) * (1/rho^2): the square root and the division
-    // run side by side instead of one after the other (this is on the rim
-    // iteration's critical path).
+    // run side by side instead of one after the other.
     out.inverse_rho = std::sqrt(rho_squared) * (1.0 / rho_squared);
-    out.nearest = (pair.r2 * out.inverse_rho) * out.y;
-    out.psi = 0.5 * ((out.y - out.nearest).squaredNorm() + out.h * out.h);
+    nearest = (pair.r2 * out.inverse_rho) * out.y;
   }
+  out.q = pair.pointOfDisk2(nearest);
+  const Vec3 residual = Vec3(s.x(), s.y(), 0.0) - out.q;
+  out.psi = 0.5 * residual.squaredNorm();
+  out.gradient = residual.head<2>();
   return out;
 }
 
 /// psi's derivatives along disk 1's rim at x = r1 (radial, 0), in the angle
 /// theta: psi' = r1 sigma and psi'' = r1 (r1 curvature + outward), with
 /// sigma = g.t and outward = -g.radial (g the gradient, t = perp(radial)) and
-/// curvature = t^T H t. Computed from `at` (evaluated at x) and the rim's
-/// directions mapped into disk 2's frame, which do not depend on `at`: the
-/// iteration's critical path holds only the terms that do.
+/// curvature = t^T H t, the last from x's coordinates in disk 2's frame.
 struct AlongRim {
   double sigma;
   double outward;
@@ -290,23 +282,17 @@ struct AlongRim {
 AlongRim alongRim(const PairInFrame1& pair, const PointToDisk2& at, const Vec2& radial) {
   const Mat3& R = pair.R;
   const Vec2 tangent(-radial.y(), radial.x());
-  // R^T t and R^T radial (in-plane parts, and heights over plane 2).
+  // R^T t (in-plane part, and height over plane 2).
   const Vec2 t2(R(0, 0) * tangent.x() + R(1, 0) * tangent.y(),
                 R(0, 1) * tangent.x() + R(1, 1) * tangent.y());
   const double t_height = R(0, 2) * tangent.x() + R(1, 2) * tangent.y();
-  const Vec2 radial2(R(0, 0) * radial.x() + R(1, 0) * radial.y(),
-                     R(0, 1) * radial.x() + R(1, 1) * radial.y());
-  const double radial_height = R(0, 2) * radial.x() + R(1, 2) * radial.y();
-  if (at.inverse_rho == 0.0) {  // over disk 2's face: g = m2 h, H = m2 m2^T
-    return {at.h * t_height, -at.h * radial_height, t_height * t_height};
-  }
-  // Over the rim: g = R (k y, h) with k = 1 - r2 / rho; t^T H t = 1 - (r2 /
-  // rho) (T.t)^2 with T = perp(y) / rho disk 2's rim tangent (|R^T t| = 1).
-  const double k = 1.0 - pair.r2 * at.inverse_rho;
+  const double sigma = at.gradient.dot(tangent), outward = -at.gradient.dot(radial);
+  if (at.inverse_rho == 0.0) return {sigma, outward, t_height * t_height};  // H = m2 m2^T
+  // Over the rim: t^T H t = 1 - (r2 / rho) (T.t)^2 with T = perp(y) / rho disk
+  // 2's rim tangent (|R^T t| = 1).
   const double across = at.y.x() * t2.y() - at.y.y() * t2.x();  // perp(y).t2, up to sign
   const double inverse_rho_cubed = at.inverse_rho * at.inverse_rho * at.inverse_rho;
-  return {k * at.y.dot(t2) + at.h * t_height, -(k * at.y.dot(radial2) + at.h * radial_height),
-          1.0 - pair.r2 * inverse_rho_cubed * across * across};
+  return {sigma, outward, 1.0 - pair.r2 * inverse_rho_cubed * across * across};
 }
 
 /// The certificate at x (frame 1, on plane 1) and q on disk 2: the best of g
@@ -357,7 +343,7 @@ double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
 Vec2 exactLineSearch(const PairInFrame1& pair, const Vec2& s, const Vec2& step, double slope,
                      PointToDisk2* at_end) {
   PointToDisk2 next = evaluate(pair, s + step);
-  double derivative_hi = next.gradient(pair).dot(step);
+  double derivative_hi = next.gradient.dot(step);
   double alpha = 1.0;
   if (derivative_hi > 0.0) {
     double lo = 0.0, hi = 1.0, derivative_lo = slope;
@@ -367,7 +353,7 @@ Vec2 exactLineSearch(const PairInFrame1& pair, const Vec2& s, const Vec2& step, 
       alpha = (lo * derivative_hi - hi * derivative_lo) / (derivative_hi - derivative_lo);
       if (!(alpha > lo && alpha < hi)) alpha = 0.5 * (lo + hi);
       next = evaluate(pair, s + alpha * step);
-      const double derivative = next.gradient(pair).dot(step);
+      const double derivative = next.gradient.dot(step);
       if (derivative > 0.0) {
         hi = alpha, derivative_hi = derivative;
         if (last_side == 1) derivative_lo *= 0.5;  // Illinois: no stuck endpoint
@@ -642,7 +628,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
   // `lower`: the certificate at the current iterate, when already evaluated.
   auto finish = [&](int iteration, std::optional<double> lower = std::nullopt) {
     current.p = Vec3(s.x(), s.y(), 0.0);
-    current.q = at.q(pair);
+    current.q = at.q;
     current.distance = (current.q - current.p).norm();
     current.iterations = iteration;
     current.lower_bound =
@@ -705,7 +691,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
                             predicted_decrease <= std::sqrt(2.0 * at.psi) * gap_tolerance;
     if (!on_rim || converging || at.psi <= tiny_psi) {
       const Vec3 x(s.x(), s.y(), 0.0);
-      const Vec3 q = at.q(pair);
+      const Vec3 q = at.q;
       const double lower = separationCertificate(pair, x, q, face_lower_bound);
       if ((q - x).norm() - lower <= gap_tolerance) return finish(iteration, lower);
       // Converged to rounding: the step no longer moves the point, or the
@@ -737,9 +723,8 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
       s_on_rim = moved;
     }
     if (!moved) {
-      const Vec2 gradient = at.gradient(pair);
-      const Vec2 step = stepOnDisk(at.hessian(pair), gradient, s, r1);
-      const double slope = gradient.dot(step);
+      const Vec2 step = stepOnDisk(at.hessian(pair), at.gradient, s, r1);
+      const double slope = at.gradient.dot(step);
       if (!(slope < 0.0)) break;  // stationary to rounding
       s_next = s + exactLineSearch(pair, s, step, slope, &next);
       moved = next.psi < at.psi;
@@ -788,7 +773,7 @@ Solution goldenSectionOnRim(const PairInFrame1& pair, double lo, double hi,
   const Vec2 s = rimPoint(pair, a_wins ? a : b);
   const PointToDisk2& at = a_wins ? at_a : at_b;
   const Vec3 x(s.x(), s.y(), 0.0);
-  const Vec3 q = at.q(pair);
+  const Vec3 q = at.q;
   return {x, q, (q - x).norm(), DiskPairFeature::rim_rim, 0,
           certificate(pair, x, q, face_lower_bound)};
 }
@@ -868,7 +853,7 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at
     if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
   }
   const Vec3 x(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0);
-  const Vec3 q = at.q(pair);
+  const Vec3 q = at.q;
   return {x, q, (q - x).norm(), DiskPairFeature::rim_rim, 0,
           certificate(pair, x, q, face_lower_bound)};
 }
