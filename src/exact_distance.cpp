@@ -560,8 +560,10 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       break;
     }
     const double dtheta = std::abs(sigma) / kappa;
-    if (outward < 0.0 && converging(dtheta, kappa, std::sqrt(2.0 * psi))) break;
     const double distance = std::sqrt(2.0 * psi);
+    // Converged along the rim with the gradient pointing inwards: a spurious
+    // rim minimum, which rimRim's model step leaves.
+    if (outward < 0.0 && converging(dtheta, kappa, distance)) break;
     if (converging(dtheta, kappa, distance)) {
       if (!lower && certified()) return answer(step);
       // At rounding (rimRim's tests): rimRim reports the point.
@@ -646,7 +648,7 @@ Solution rimRim(const PairInFrame1& pair, double scale, double face_lower_bound)
     // Multiplier of |s| <= r1: lambda = outward / r1 >= 0 iff -gradient points
     // out of the disk; slightly negative within kInwardGradientTolerance * |g|
     // (compared squared, |g|^2 = sigma^2 + outward^2: no square root).
-    const AlongRim along = near_rim ? alongRim(pair, at, radial) : AlongRim{0.0, -1.0, 0.0};
+    const AlongRim along = near_rim ? alongRim(pair, at, radial) : AlongRim{};
     const double outward = along.outward;
     const double tolerance_squared = kInwardGradientTolerance * kInwardGradientTolerance;
     const bool on_rim =
