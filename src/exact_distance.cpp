@@ -483,8 +483,10 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// gradient pointing inwards needs rimRim's model step. Returns the certified
 /// answer, or nullopt with *radial at the last point reached when a step is
 /// not a plain one: such a stall, no positive curvature, a clamped step, psi
-/// not decreasing, or a certificate that does not close. rimRim then goes on
-/// from there. *steps receives the number of steps taken.
+/// not decreasing beyond rounding, or a point at rounding level whose
+/// certificate does not close (a certificate that fails earlier only means
+/// more steps). rimRim then goes on from there. *steps receives the number of
+/// steps taken.
 std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double face_lower_bound,
                                   Vec2* radial_io, int* steps) {
   const Mat3& R = pair.R;
