@@ -209,16 +209,15 @@ double faceLowerBound(const PairInFrame1& pair) {
 
 /// psi(s) = |x - proj_K2(x)|^2 / 2 for x = (s, 0) on plane 1
 /// (docs/exact_distance.md, section 4). proj_K2(x) is found in two dimensions:
-/// x's coordinates y in disk 2's plane and its height h over it are affine in
-/// s, and the projection is y itself (over disk 2's face) or y pulled onto the
-/// circle of radius r2 (over its rim). psi and its gradient are then taken from
+/// x's coordinates y in disk 2's plane are affine in s, and the projection is y
+/// itself (over disk 2's face) or y pulled onto the circle of radius r2 (over
+/// its rim). psi and its gradient are then taken from
 /// the points themselves, q - x in frame 1, so that they stay consistent with
 /// the certificate's q - x when R is orthonormal only to rounding (a float pose
 /// widened to double); the Hessian, which only shapes the steps, comes from the
 /// two-dimensional pieces on demand.
 struct PointToDisk2 {
   Vec2 y;              ///< x - c in disk 2's plane coordinates: R^T (x - c), first two.
-  double h;            ///< x's height over plane 2: n2.(x - c).
   double inverse_rho;  ///< 1 / |y| over disk 2's rim, 0 over its face.
   Vec3 q;              ///< proj_K2(x), frame 1.
   double psi;          ///< |x - q|^2 / 2.
@@ -252,7 +251,6 @@ PointToDisk2 evaluate(const PairInFrame1& pair, const Vec2& s) {
   // R^T (x - c) = R^T x + c1_in_frame2, with x = (s, 0).
   out.y = Vec2(R(0, 0) * s.x() + R(1, 0) * s.y() + pair.c1_in_frame2.x(),
                R(0, 1) * s.x() + R(1, 1) * s.y() + pair.c1_in_frame2.y());
-  out.h = R(0, 2) * s.x() + R(1, 2) * s.y() + pair.c1_in_frame2.z();
   const double rho_squared = out.y.squaredNorm();
   Vec2 nearest = out.y;  // proj_K2(x) in disk 2's plane coordinates
   out.inverse_rho = 0.0;
@@ -504,7 +502,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   double h = r1 * radial_height + h0;
   // Over disk 2's rim proj_K2 pulls y onto the circle: nearest = (r2 / rho) y;
   // over its face it is y itself (to_rim = 1, inverse_rho unused).
-  double rho_squared = y.squaredNorm();
+  const double rho_squared = y.squaredNorm();
   bool over_face = !(rho_squared > r2 * r2);
   double inverse_rho = over_face ? 0.0 : std::sqrt(rho_squared) * (1.0 / rho_squared);
   double to_rim = over_face ? 1.0 : r2 * inverse_rho;
@@ -591,7 +589,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     if (!(next_psi < psi) || psi - next_psi <= kStagnation * scale * scale) break;
     radial = Vec2(cos * radial.x() - sin * radial.y(), cos * radial.y() + sin * radial.x());
     radial2 = next_radial2, radial_height = next_radial_height;
-    y = next_y, h = next_h, rho_squared = next_rho_squared, over_face = next_over_face;
+    y = next_y, h = next_h, over_face = next_over_face;
     inverse_rho = next_inverse_rho, to_rim = next_to_rim, k = next_k, psi = next_psi;
     step_before = last_step;
     last_step = dtheta;

@@ -1120,9 +1120,10 @@ TYPED_TEST(DiskEnvironment, BroadphaseNearestDistanceAndCollisionMatchBruteForce
 // ---- bad input ---------------------------------------------------------------------
 
 // NaN in the disk's pose or the mesh's / octree's pose, or a mesh / octree
-// pose that is not rigid: NaN distance and no contact (never a crash: Debian's FCL asserts in GJK on NaN), every BV type,
-// both orders, both solvers, objects and geometries, as for every Disk pair
-// (test_disk_shape_cases.cpp, docs/robustness.md).
+// pose that is not rigid: NaN distance and no contact (never a crash: Debian's
+// FCL asserts in GJK on NaN), every BV type, both orders, both solvers, objects
+// and geometries, as for every Disk pair (test_disk_shape_cases.cpp,
+// docs/robustness.md).
 TYPED_TEST(DiskEnvironment, NaNPoseGivesNaNDistanceAndNoContact) {
   using S = TypeParam;
   const S nan = std::numeric_limits<S>::quiet_NaN();
