@@ -15,12 +15,13 @@ namespace fcl_disk {
 template <typename S>
 bool intersectDisks(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2,
                     DiskContact<S>* contact) {
-  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return false;
-  const auto pair = internal::PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
+  const internal::DiskPairCheck check = internal::checkDiskPair(r1, X_W1, r2, X_W2);
+  if (!check.valid) return false;
+  const internal::Mat3 R_W1 = internal::diskRotationInDouble(X_W1, check.orthonormal1);
+  const auto pair = internal::PairInFrame1::fromWorld(r1, X_W1, R_W1, r2, X_W2, check);
   const auto common = internal::commonPoint(pair);
   if (!common) return false;
   if (contact) {
-    const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
     contact->pos = (X_W1.translation().template cast<double>() + R_W1 * *common).template cast<S>();
     const DiskSignedDistanceResult<S> penetration =
         internal::penetrationOfIntersecting(r1, X_W1, r2, X_W2);

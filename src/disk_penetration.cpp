@@ -2,6 +2,7 @@
 // notation (F, Q, rho, L, K, the charts): docs/penetration_depth.md.
 #include "fcl_disk/disk_penetration.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -313,8 +314,21 @@ Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Bes
   const double in_plane2 = pair.inPlane2(w);
   if (std::max(in_plane1, in_plane2) < kAlongNormal) {
     // Parallel planes: w is the common normal; coplanar (PD = 0 up to rounding).
-    const auto common = internal::commonPoint(pair);
-    out.p1 = out.p2 = common ? *common : Vec3(0.0, 0.0, 0.5 * pair.c.z());
+    // Apart by more than the touching tolerance (heights of rounding size, or
+    // disks that share no point), the witnesses are the point of disk 1 in the
+    // middle of the overlap of the disks' projections on the line of centres
+    // (disk 1's rim point towards disk 2 if they do not overlap) and the point
+    // of disk 2's plane over it.
+    if (const auto common = internal::commonPoint(pair)) {
+      out.p1 = out.p2 = *common;
+    } else {
+      const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
+      const double t = internal::coplanarOverlapMidpoint(D, pair.r1, pair.r2).value_or(D - pair.r2);
+      const Vec2 xy = pair.pointOnCentreLine(std::clamp(t, -pair.r1, pair.r1));
+      out.p1 = Vec3(xy.x(), xy.y(), 0.0);
+      const Vec3& n2 = pair.R.col(2);
+      out.p2 = out.p1 + (n2.dot(pair.c - out.p1) / n2.z()) * Vec3::UnitZ();
+    }
   } else if (in_plane2 >= in_plane1) {
     const Vec3 P2w = pair.R.col(0).dot(w) * pair.R.col(0) + pair.R.col(1).dot(w) * pair.R.col(1);
     out.p2 = pair.c - (pair.r2 / in_plane2) * P2w;
@@ -536,14 +550,13 @@ DiskSignedDistanceResult<S> penetrationOfValidPair(S r1, const fcl::Transform3<S
   const bool swapped = best.swapped;
   const double scale = best.scale;
   const auto& X_WA = swapped ? X_W2 : X_W1;  // the frame the search ran in
-  const internal::Mat3 R_WA = X_WA.linear().template cast<double>();
+  const internal::Mat3 R_WA = internal::diskRotationInDouble(X_WA);
   const Vec3 c_A = X_WA.translation().template cast<double>();
   const Vec3 p_WA = c_A + R_WA * (found.p1 * scale), p_WB = c_A + R_WA * (found.p2 * scale);
   DiskSignedDistanceResult<S> result;
   result.signed_distance = S(-found.depth * scale);
   result.p_W1 = (swapped ? p_WB : p_WA).template cast<S>();
   result.p_W2 = (swapped ? p_WA : p_WB).template cast<S>();
-  // Normalised: R_WA is orthonormal only to within kRotationDefectTolerance.
   // Swapped, w moves the caller's disk 1: disk 2 moves along -w.
   const Vec3 w_W = (R_WA * found.w).normalized();
   result.direction = (swapped ? Vec3(-w_W) : w_W).template cast<S>();

@@ -1056,11 +1056,12 @@ Solution solveInFrame1(const PairInFrame1& pair) {
 template <typename S>
 DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                         const fcl::Transform3<S>& X_W2) {
-  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return internal::nanDistanceResult<S>();
-  const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, r2, X_W2);
+  const internal::DiskPairCheck check = internal::checkDiskPair(r1, X_W1, r2, X_W2);
+  if (!check.valid) return internal::nanDistanceResult<S>();
+  const internal::Mat3 R_W1 = internal::diskRotationInDouble(X_W1, check.orthonormal1);
+  const PairInFrame1 pair = PairInFrame1::fromWorld(r1, X_W1, R_W1, r2, X_W2, check);
   const Solution solution = solveInFrame1(pair);
 
-  const internal::Mat3 R_W1 = X_W1.linear().template cast<double>();
   const Vec3 c1 = X_W1.translation().template cast<double>();
   DiskDistanceResult<S> result;
   result.distance = S(solution.distance);

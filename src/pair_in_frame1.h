@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <type_traits>
 
 #include "fcl_disk/disk_pair.h"
 
@@ -43,6 +44,66 @@ DiskDistanceResult<S> nanDistanceResult() {
   return result;
 }
 
+/// A disk is its centre, its unit normal and its radius: the in-plane axes of
+/// its pose only parameterise it. Rotations closer to orthonormal than this
+/// (max_ij |(R^T R - I)_ij|, a few hundred double ulps: any rotation built or
+/// composed in double) are used as given; further ones, accepted up to
+/// kRotationDefectTolerance (rotations built in float: ~1e-7), are rebuilt by
+/// diskRotationInDouble. Used as given, their defect would stay in every
+/// certificate (q - x and the duality bound disagree by defect * scale), leave
+/// it open and send the query to the fallback searches.
+constexpr double kOrthonormalInDouble = 1e-13;
+
+/// Whether a pose's rotation is within kOrthonormalInDouble of orthonormal, as
+/// checkDiskPose asks it: in float never (-1), a float rotation widened to
+/// double being orthonormal only to float's rounding.
+template <typename S>
+constexpr S kOrthonormalInDoubleAsked = std::is_same_v<S, double> ? S(kOrthonormalInDouble) : S(-1);
+
+/// The rotation of a valid disk pose in double, orthonormal to double rounding:
+/// the pose's own if `orthonormal` (checkDiskPose(X_WD,
+/// kOrthonormalInDoubleAsked<S>).orthonormal), else the frame with the pose's
+/// normal n = R e_z / |R e_z| and its first axis made orthogonal to n
+/// (Gram-Schmidt), v = n x u. The disk, the set of points at most r from c in
+/// the plane through c normal to n, is the same either way.
+inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
+  Mat3 frame;
+  frame.col(2) = R.col(2) * (1.0 / std::sqrt(R.col(2).squaredNorm()));
+  const Vec3 u = R.col(0) - frame.col(2).dot(R.col(0)) * frame.col(2);
+  frame.col(0) = u * (1.0 / std::sqrt(u.squaredNorm()));
+  frame.col(1) = frame.col(2).cross(frame.col(0));
+  return frame;
+}
+
+template <typename S>
+inline Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& X_WD,
+                                 bool orthonormal) {
+  Mat3 R = X_WD.linear().template cast<double>();
+  if (!orthonormal) R = orthonormalFrameWithNormalOf(R);
+  return R;
+}
+
+template <typename S>
+Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& X_WD) {
+  return diskRotationInDouble(X_WD, checkDiskPose(X_WD, kOrthonormalInDoubleAsked<S>).orthonormal);
+}
+
+/// isValidDiskPair's verdict, and whether each rotation is orthonormal in
+/// double (checkDiskPose with kOrthonormalInDoubleAsked): one pass over each pose.
+struct DiskPairCheck {
+  bool valid;
+  bool orthonormal1, orthonormal2;
+};
+
+template <typename S>
+DiskPairCheck checkDiskPair(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                            const fcl::Transform3<S>& X_W2) {
+  const DiskPoseCheck check1 = checkDiskPose(X_W1, kOrthonormalInDoubleAsked<S>);
+  const DiskPoseCheck check2 = checkDiskPose(X_W2, kOrthonormalInDoubleAsked<S>);
+  return {isValidDiskRadius(r1) && isValidDiskRadius(r2) && check1.valid && check2.valid,
+          check1.orthonormal, check2.orthonormal};
+}
+
 struct PairInFrame1 {
   Vec3 c;     ///< centre of disk 2 in disk 1's frame.
   Mat3 R;     ///< rotation of disk 2 in disk 1's frame: columns u, v, n.
@@ -53,15 +114,32 @@ struct PairInFrame1 {
   Vec3 c1_in_frame2;  ///< disk 1's centre in disk 2's frame: -R^T c = -(u.c, v.c, n.c).
 
   /// From world poses; all arithmetic in double, relative to c1 (so a common
-  /// translation, however large, costs only the rounding of c2 - c1).
+  /// translation, however large, costs only the rounding of c2 - c1), with the
+  /// rotations of diskRotationInDouble: R_W1 that of X_W1 (map points back
+  /// with it), `check` checkDiskPair of the same arguments, valid.
+  template <typename S>
+  static PairInFrame1 fromWorld(S r1, const Eigen::Transform<S, 3, Eigen::Isometry>& X_W1,
+                                const Mat3& R_W1, S r2,
+                                const Eigen::Transform<S, 3, Eigen::Isometry>& X_W2,
+                                const DiskPairCheck& check) {
+    const Vec3 c1_to_c2 =
+        X_W2.translation().template cast<double>() - X_W1.translation().template cast<double>();
+    if (check.orthonormal2) {  // as given, in one product
+      return make(R_W1.transpose() * c1_to_c2,
+                  R_W1.transpose() * X_W2.linear().template cast<double>(), double(r1),
+                  double(r2));
+    }
+    return make(R_W1.transpose() * c1_to_c2,
+                R_W1.transpose() * orthonormalFrameWithNormalOf(
+                                       X_W2.linear().template cast<double>()),
+                double(r1), double(r2));
+  }
+  /// The same for a valid pair (isValidDiskPair).
   template <typename S>
   static PairInFrame1 fromWorld(S r1, const Eigen::Transform<S, 3, Eigen::Isometry>& X_W1, S r2,
                                 const Eigen::Transform<S, 3, Eigen::Isometry>& X_W2) {
-    const Mat3 R_W1 = X_W1.linear().template cast<double>();
-    const Vec3 c1_to_c2 =
-        X_W2.translation().template cast<double>() - X_W1.translation().template cast<double>();
-    return make(R_W1.transpose() * c1_to_c2,
-                R_W1.transpose() * X_W2.linear().template cast<double>(), double(r1), double(r2));
+    const DiskPairCheck check = checkDiskPair(r1, X_W1, r2, X_W2);
+    return fromWorld(r1, X_W1, diskRotationInDouble(X_W1, check.orthonormal1), r2, X_W2, check);
   }
 
   static PairInFrame1 make(const Vec3& c, const Mat3& R, double r1, double r2) {

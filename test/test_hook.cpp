@@ -439,7 +439,9 @@ struct EntryPair {
 };
 
 /// Disk pairs of every kind the shortcut can see: apart, overlapping (every
-/// fourth pair is made coplanar and overlapping), and a few with a NaN pose.
+/// eighth pair is made coplanar and overlapping, in float only to rounding; every
+/// eighth more crosses the other's plane at a tilt of 0.05 rad, overlapping in
+/// float too), and a few with a NaN pose.
 template <typename S>
 std::vector<EntryPair<S>> entryPairs() {
   fcl_disk_test::Random random(4242);
@@ -448,7 +450,9 @@ std::vector<EntryPair<S>> entryPairs() {
     fcl::Transform3<double> X1 = fcl::Transform3<double>::Identity(), X2 = X1;
     X1.linear() = random.rotation();
     X1.translation() = random.inBall(2.0);
-    X2.linear() = i % 4 == 0 ? X1.linear() : random.rotation();
+    X2.linear() = i % 8 == 0   ? X1.linear()
+                  : i % 8 == 4 ? X1.linear() * Eigen::AngleAxisd(0.05, Vec3::UnitX()).matrix()
+                               : random.rotation();
     X2.translation() = i % 4 == 0 ? X1 * Vec3(0.3, 0.2, 0.0) : X1.translation() + random.inBall(2.5);
     if (i % 60 == 59) X2.translation().x() = std::numeric_limits<double>::quiet_NaN();
     const double r1 = random.uniform(0.3, 1.5), r2 = random.uniform(0.3, 1.5);

@@ -49,9 +49,13 @@ struct DiskDistanceResult {
 /// in S (a few ulps, growing by about an ulp per composition: 1e-6 is ~1e10 double
 /// ulps and covers rotations built in float and widened to double; 1e-4 is ~1000
 /// float ulps), far below a deliberate scale or shear, which would turn the disk
-/// into an ellipse. An accepted rotation is used as given (R^T is used as its
-/// inverse), so distances may differ by about defect * (r1 + r2 + |c1 - c2|)
-/// beyond the solvers' stated bounds.
+/// into an ellipse. A disk is its centre, unit normal and radius: the disk-disk
+/// solvers (exactDiskDistance, intersectDisks, diskPenetration) answer for the
+/// disk with the normal R e_z / |R e_z|, replacing a rotation further than 1e-13
+/// from orthonormal (every float rotation widened to double) by the orthonormal
+/// frame with that normal. almohamadSelimDiskDistance and the disk-shape solvers
+/// use an accepted rotation as given (R^T as its inverse), so their distances
+/// may differ by about defect * (r1 + r2 + |c1 - c2|) beyond their stated bounds.
 template <typename S>
 constexpr S kRotationDefectTolerance = std::is_same<S, float>::value ? S(1e-4) : S(1e-6);
 
@@ -76,15 +80,17 @@ constexpr bool isValidDiskRadius(S r) {
   return r >= kMinDiskRadius<S> && r <= kMaxDiskLength<S>;
 }
 
-/// Whether X_WD can be a disk's pose: a translation within kMaxDiskLength in
-/// every coordinate (so finite) and a rotation within
-/// kRotationDefectTolerance of orthonormal (reflections, det = -1, are accepted:
-/// the reflected disk is the same set). Every fcl_disk query on a disk whose pose
-/// fails this returns a NaN distance and no contact (docs/robustness.md): NaN or
-/// infinite input has no meaningful answer, and a non-orthonormal rotation does
-/// not describe a disk.
+namespace internal {
+
+/// isValidDiskPose's verdict, and whether the rotation is also within
+/// `orthonormal_tolerance` of orthonormal (max_ij |(R^T R - I)_ij|): one pass.
+struct DiskPoseCheck {
+  bool valid;
+  bool orthonormal;
+};
+
 template <typename S>
-inline bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
+inline DiskPoseCheck checkDiskPose(const fcl::Transform3<S>& X_WD, S orthonormal_tolerance) {
   // Runs on every query, so written out without branches: the translation's
   // range and the six distinct entries of R^T R - I (NaN fails every comparison).
   const auto& M = X_WD.matrix();
@@ -96,8 +102,26 @@ inline bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
   bool valid = std::abs(M(0, 3)) <= kMaxDiskLength<S>;
   valid &= std::abs(M(1, 3)) <= kMaxDiskLength<S>;
   valid &= std::abs(M(2, 3)) <= kMaxDiskLength<S>;
-  for (const S defect : defects) valid &= std::abs(defect) <= kRotationDefectTolerance<S>;
-  return valid;
+  S largest = 0;  // NaN is caught by `valid`; `orthonormal` matters only if valid
+  for (const S defect : defects) {
+    valid &= std::abs(defect) <= kRotationDefectTolerance<S>;
+    largest = std::max(largest, std::abs(defect));
+  }
+  return {valid, largest <= orthonormal_tolerance};
+}
+
+}  // namespace internal
+
+/// Whether X_WD can be a disk's pose: a translation within kMaxDiskLength in
+/// every coordinate (so finite) and a rotation within
+/// kRotationDefectTolerance of orthonormal (reflections, det = -1, are accepted:
+/// the reflected disk is the same set). Every fcl_disk query on a disk whose pose
+/// fails this returns a NaN distance and no contact (docs/robustness.md): NaN or
+/// infinite input has no meaningful answer, and a non-orthonormal rotation does
+/// not describe a disk.
+template <typename S>
+inline bool isValidDiskPose(const fcl::Transform3<S>& X_WD) {
+  return internal::checkDiskPose(X_WD, S(0)).valid;
 }
 
 /// Length of the projection of w onto the plane of the disk with rotation R

@@ -41,7 +41,9 @@ namespace fcl_disk {
 /// face case of nearly parallel disks), and g is only Lipschitz at its kinks, so
 /// the gap may reach about (r1 + r2) (sqrt(eps) + 8 eps scale / d) while
 /// the distance still meets the bound above (eps of the scalar type).
-/// Float: inputs are promoted to double, results rounded to float, so the bound
+/// Float: inputs are promoted to double (each rotation rebuilt as the
+/// orthonormal frame with its normal, so that the certificate closes as for
+/// double input), results rounded to float, so the bound
 /// is a few float ulps of max(r1 + r2 + |c1 - c2|, |c_i|) (property tests at
 /// scales 1e-30..1e30).
 ///
@@ -76,8 +78,8 @@ namespace fcl_disk {
 /// squares would overflow or underflow, a rotation further than
 /// kRotationDefectTolerance from orthonormal) gives NaN distance, lower_bound
 /// and points (feature unspecified).
-/// An accepted, slightly non-orthonormal rotation is used as given (see
-/// kRotationDefectTolerance for what that costs).
+/// An accepted, slightly non-orthonormal rotation stands for the disk with its
+/// normal R e_z / |R e_z| (kRotationDefectTolerance).
 template <typename S>
 DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                         const fcl::Transform3<S>& X_W2);
