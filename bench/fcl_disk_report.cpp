@@ -8,6 +8,9 @@
 //   gjk_libccd_h<h>,           FCL 0.7's own GJK on Cylinder(r, h) for
 //   gjk_indep_h<h>             h in {1e-2, 1e-4, 1e-6}, default DistanceRequest
 //                              (distance_tolerance 1e-6) but the solver type.
+//   exact_float                Disk<float> objects at the pair's poses rounded to
+//                              float (path "fcl::distance, float"; its error
+//                              includes that rounding, ~1e-7 of the scene).
 // plus, for the hook's overhead in the same run, the two disk solvers called
 // directly (exact_direct, almohamad_selim_direct; path "direct"), and
 // fcl_entry_only: the disk pair through fcl::distance with a result already at
@@ -297,11 +300,16 @@ const double kHeights[] = {1e-2, 1e-4, 1e-6};
 /// on its frame, axis +z: the disk thickened by h/2 on each side).
 struct PairObjects {
   std::unique_ptr<fcl::CollisionObjectd> disk1, disk2;
+  std::unique_ptr<fcl::CollisionObjectf> disk1f, disk2f;  ///< the same in float
   std::vector<std::unique_ptr<fcl::CollisionObjectd>> cyl1, cyl2;  ///< one per height
 
   void build(double r1, const fcl::Transform3d& X_W1, double r2, const fcl::Transform3d& X_W2) {
     disk1 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(r1), X_W1);
     disk2 = std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl_disk::Diskd>(r2), X_W2);
+    disk1f = std::make_unique<fcl::CollisionObjectf>(
+        std::make_shared<fcl_disk::Diskf>(float(r1)), X_W1.cast<float>());
+    disk2f = std::make_unique<fcl::CollisionObjectf>(
+        std::make_shared<fcl_disk::Diskf>(float(r2)), X_W2.cast<float>());
     for (double h : kHeights) {
       cyl1.push_back(std::make_unique<fcl::CollisionObjectd>(
           std::make_shared<fcl::Cylinderd>(r1, h), X_W1));
@@ -320,7 +328,7 @@ struct PreparedPair : PairObjects {
 };
 constexpr int kNumHeights = 3;
 
-enum class Kind { disk_fcl, disk_direct, gjk, fcl_entry };
+enum class Kind { disk_fcl, disk_fcl_float, disk_direct, gjk, fcl_entry };
 
 struct Solver {
   std::string name;
@@ -336,6 +344,7 @@ std::vector<Solver> makeSolvers() {
   std::vector<Solver> solvers;
   solvers.push_back({"exact", "fcl::distance", Kind::disk_fcl, M::exact});
   solvers.push_back({"almohamad_selim", "fcl::distance", Kind::disk_fcl, M::almohamad_selim});
+  solvers.push_back({"exact_float", "fcl::distance, float", Kind::disk_fcl_float, M::exact});
   const char* heights[] = {"1e-2", "1e-4", "1e-6"};
   for (auto gjk : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
     for (int h = 0; h < kNumHeights; ++h) {
@@ -362,6 +371,12 @@ inline double query(const Solver& solver, const PreparedPair& pair) {
       fcl::DistanceRequestd request;
       fcl::DistanceResultd result;
       fcl::distance(pair.disk1.get(), pair.disk2.get(), request, result);
+      return result.min_distance;
+    }
+    case Kind::disk_fcl_float: {
+      fcl::DistanceRequestf request;
+      fcl::DistanceResultf result;
+      fcl::distance(pair.disk1f.get(), pair.disk2f.get(), request, result);
       return result.min_distance;
     }
     case Kind::disk_direct: {
@@ -419,7 +434,9 @@ struct Measurement {
 
 Measurement measure(const Solver& solver, const PreparedPair& pair, const Options& options,
                     double clock_ns) {
-  if (solver.kind == Kind::disk_fcl) fcl_disk::registerDiskFunctions(solver.method);
+  if (solver.kind == Kind::disk_fcl || solver.kind == Kind::disk_fcl_float) {
+    fcl_disk::registerDiskFunctions(solver.method);
+  }
   Measurement m;
   // First call: the answer (and warms the caches).
   double d = query(solver, pair);
@@ -1901,23 +1918,28 @@ int main(int argc, char** argv) {
 
   // 4. Per family: the exact solver against the closed form and the fastest
   //    thin-cylinder GJK (h = 1e-6), ratios of medians and of p99s within this run.
-  std::printf("\n## Per family: exact vs almohamad_selim and GJK h=1e-6 (one run)\n\n");
+  std::printf("\n## Per family: exact vs almohamad_selim, GJK h=1e-6 and exact in float (one "
+              "run)\n\n");
   std::printf("| family | exact median ns | exact p99 ns | almohamad_selim median / p99 ns | "
               "exact / almohamad_selim, median | p99 | fastest GJK h=1e-6 median / p99 ns | "
-              "GJK / exact, median | p99 |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "GJK / exact, median | p99 | exact_float median / p99 ns | float / double, "
+              "median | p99 |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const std::string& family : family_order) {
     const Summary& e = find("exact", family);
     const Summary& a = find("almohamad_selim", family);
     const Summary& g1 = find("gjk_libccd_h1e-6", family);
     const Summary& g2 = find("gjk_indep_h1e-6", family);
     const Summary& g = g1.median_ns <= g2.median_ns ? g1 : g2;
-    std::printf("| %s | %s | %s | %s / %s | %.2fx | %.2fx | %s / %s (%s) | %.1fx | %.1fx |\n",
+    const Summary& f = find("exact_float", family);
+    std::printf("| %s | %s | %s | %s / %s | %.2fx | %.2fx | %s / %s (%s) | %.1fx | %.1fx | "
+                "%s / %s | %.2fx | %.2fx |\n",
                 family.c_str(), formatNs(e.median_ns).c_str(), formatNs(e.p99_ns).c_str(),
                 formatNs(a.median_ns).c_str(), formatNs(a.p99_ns).c_str(),
                 e.median_ns / a.median_ns, e.p99_ns / a.p99_ns, formatNs(g.median_ns).c_str(),
                 formatNs(g.p99_ns).c_str(), g.solver == "gjk_libccd_h1e-6" ? "libccd" : "indep",
-                g.median_ns / e.median_ns, g.p99_ns / e.p99_ns);
+                g.median_ns / e.median_ns, g.p99_ns / e.p99_ns, formatNs(f.median_ns).c_str(),
+                formatNs(f.p99_ns).c_str(), f.median_ns / e.median_ns, f.p99_ns / e.p99_ns);
   }
 
   // 5. Headline figures (ratios of medians over all pairs, this run).

@@ -36,6 +36,7 @@ MARKERS = {
     "gjk_indep_h1e-6": "*",
     "exact_direct": "h",
     "almohamad_selim_direct": "p",
+    "exact_float": "d",
 }
 
 
