@@ -323,7 +323,8 @@ Penetration withWitnesses(const PairInFrame1& pair, const PenetrationSearch::Bes
       out.p1 = out.p2 = *common;
     } else {
       const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
-      const double t = internal::coplanarOverlapMidpoint(D, pair.r1, pair.r2).value_or(D - pair.r2);
+      const double t =
+          internal::coplanarOverlapMidpoint(D, pair.r1, pair.r2).value_or(D - pair.r2);
       const Vec2 xy = pair.pointOnCentreLine(std::clamp(t, -pair.r1, pair.r1));
       out.p1 = Vec3(xy.x(), xy.y(), 0.0);
       const Vec3& n2 = pair.R.col(2);

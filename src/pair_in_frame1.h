@@ -60,12 +60,8 @@ constexpr double kOrthonormalInDouble = 1e-13;
 template <typename S>
 constexpr S kOrthonormalInDoubleAsked = std::is_same_v<S, double> ? S(kOrthonormalInDouble) : S(-1);
 
-/// The rotation of a valid disk pose in double, orthonormal to double rounding:
-/// the pose's own if `orthonormal` (checkDiskPose(X_WD,
-/// kOrthonormalInDoubleAsked<S>).orthonormal), else the frame with the pose's
-/// normal n = R e_z / |R e_z| and its first axis made orthogonal to n
-/// (Gram-Schmidt), v = n x u. The disk, the set of points at most r from c in
-/// the plane through c normal to n, is the same either way.
+/// The orthonormal frame with R's normal n = R e_z / |R e_z| and R's first axis
+/// made orthogonal to n (Gram-Schmidt), v = n x u.
 inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
   Mat3 frame;
   frame.col(2) = R.col(2) * (1.0 / std::sqrt(R.col(2).squaredNorm()));
@@ -75,6 +71,11 @@ inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
   return frame;
 }
 
+/// The rotation of a valid disk pose in double, orthonormal to double rounding:
+/// the pose's own if `orthonormal` (checkDiskPose(X_WD,
+/// kOrthonormalInDoubleAsked<S>).orthonormal), else orthonormalFrameWithNormalOf
+/// it. The disk, the set of points at most r from c in the plane through c
+/// normal to n, is the same either way.
 template <typename S>
 inline Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& X_WD,
                                  bool orthonormal) {
@@ -83,6 +84,7 @@ inline Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& 
   return R;
 }
 
+/// The same, checking the pose itself.
 template <typename S>
 Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& X_WD) {
   return diskRotationInDouble(X_WD, checkDiskPose(X_WD, kOrthonormalInDoubleAsked<S>).orthonormal);
