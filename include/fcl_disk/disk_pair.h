@@ -80,13 +80,14 @@ constexpr bool isValidDiskRadius(S r) {
   return r >= kMinDiskRadius<S> && r <= kMaxDiskLength<S>;
 }
 
+/// @cond
 namespace internal {
 
 /// isValidDiskPose's verdict, and whether the rotation is also within
 /// `orthonormal_tolerance` of orthonormal (max_ij |(R^T R - I)_ij|): one pass.
 struct DiskPoseCheck {
-  bool valid;
-  bool orthonormal;
+  bool valid;        ///< isValidDiskPose's verdict.
+  bool orthonormal;  ///< the rotation is within the tolerance asked of orthonormal.
 };
 
 template <typename S>
@@ -111,6 +112,7 @@ inline DiskPoseCheck checkDiskPose(const fcl::Transform3<S>& X_WD, S orthonormal
 }
 
 }  // namespace internal
+/// @endcond
 
 /// Whether X_WD can be a disk's pose: a translation within kMaxDiskLength in
 /// every coordinate (so finite) and a rotation within
