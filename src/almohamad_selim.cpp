@@ -75,7 +75,7 @@ DiskDistanceResult<S> almohamadSelimDiskDistance(S r1, const fcl::Transform3<S>&
   // Invalid input (NaN or infinite radius or pose, a rotation that is not
   // orthonormal): NaN out. Without this a NaN radius would fail every `>` test
   // of Props. 1-2 and quietly yield a finite, meaningless pair.
-  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return internal::nanDistanceResult<S>();
+  if (!internal::checkDiskPair(r1, X_W1, r2, X_W2).valid) return internal::nanDistanceResult<S>();
   DiskDistanceResult<S> result;
 
   const Mat3 R1 = X_W1d.linear();

@@ -569,7 +569,7 @@ DiskSignedDistanceResult<S> penetrationOfValidPair(S r1, const fcl::Transform3<S
 template <typename S>
 DiskSignedDistanceResult<S> diskPenetration(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                             const fcl::Transform3<S>& X_W2) {
-  if (!internal::isValidDiskPair(r1, X_W1, r2, X_W2)) return nanSignedDistance<S>();
+  if (!internal::checkDiskPair(r1, X_W1, r2, X_W2).valid) return nanSignedDistance<S>();
   // Decided as intersectDisks decides, so that the hook, which knows that
   // decision already, answers bit for bit the same.
   const bool shares_point =

@@ -22,15 +22,6 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-/// Whether (r1, X_W1, r2, X_W2) describes two disks: radii accepted by
-/// isValidDiskRadius(), poses by isValidDiskPose(). The solvers answer anything
-/// else with nanDistanceResult().
-template <typename S>
-bool isValidDiskPair(S r1, const fcl::Transform3<S>& X_W1, S r2, const fcl::Transform3<S>& X_W2) {
-  return isValidDiskRadius(r1) && isValidDiskRadius(r2) && isValidDiskPose(X_W1) &&
-         isValidDiskPose(X_W2);
-}
-
 /// The answer to input that describes no disk pair: NaN distance, bound and
 /// points, never a finite made-up number.
 template <typename S>
@@ -54,11 +45,11 @@ DiskDistanceResult<S> nanDistanceResult() {
 /// it open and send the query to the fallback searches.
 constexpr double kOrthonormalInDouble = 1e-13;
 
-/// Whether a pose's rotation is within kOrthonormalInDouble of orthonormal, as
-/// checkDiskPose asks it: in float never (-1), a float rotation widened to
-/// double being orthonormal only to float's rounding.
+/// The tolerance checkDiskPose is given to decide whether a rotation in S is
+/// used as given: kOrthonormalInDouble in double; in float never (-1), a float
+/// rotation widened to double being orthonormal only to float's rounding.
 template <typename S>
-constexpr S kOrthonormalInDoubleAsked = std::is_same_v<S, double> ? S(kOrthonormalInDouble) : S(-1);
+constexpr S kAsGivenRotationTolerance = std::is_same_v<S, double> ? S(kOrthonormalInDouble) : S(-1);
 
 /// The orthonormal frame with R's normal n = R e_z / |R e_z| and R's first axis
 /// made orthogonal to n (Gram-Schmidt), v = n x u.
@@ -73,7 +64,7 @@ inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
 
 /// The rotation of a valid disk pose in double, orthonormal to double rounding:
 /// the pose's own if `orthonormal` (checkDiskPose(X_WD,
-/// kOrthonormalInDoubleAsked<S>).orthonormal), else orthonormalFrameWithNormalOf
+/// kAsGivenRotationTolerance<S>).orthonormal), else orthonormalFrameWithNormalOf
 /// it. The disk, the set of points at most r from c in the plane through c
 /// normal to n, is the same either way.
 template <typename S>
@@ -87,11 +78,13 @@ inline Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& 
 /// The same, checking the pose itself.
 template <typename S>
 Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& X_WD) {
-  return diskRotationInDouble(X_WD, checkDiskPose(X_WD, kOrthonormalInDoubleAsked<S>).orthonormal);
+  return diskRotationInDouble(X_WD, checkDiskPose(X_WD, kAsGivenRotationTolerance<S>).orthonormal);
 }
 
-/// isValidDiskPair's verdict, and whether each rotation is orthonormal in
-/// double (checkDiskPose with kOrthonormalInDoubleAsked): one pass over each pose.
+/// Whether (r1, X_W1, r2, X_W2) describes two disks (radii accepted by
+/// isValidDiskRadius(), poses by isValidDiskPose(); the solvers answer anything
+/// else with nanDistanceResult()), and whether each rotation is used as given
+/// (checkDiskPose with kAsGivenRotationTolerance): one pass over each pose.
 struct DiskPairCheck {
   bool valid;
   bool orthonormal1, orthonormal2;
@@ -100,8 +93,8 @@ struct DiskPairCheck {
 template <typename S>
 DiskPairCheck checkDiskPair(S r1, const fcl::Transform3<S>& X_W1, S r2,
                             const fcl::Transform3<S>& X_W2) {
-  const DiskPoseCheck check1 = checkDiskPose(X_W1, kOrthonormalInDoubleAsked<S>);
-  const DiskPoseCheck check2 = checkDiskPose(X_W2, kOrthonormalInDoubleAsked<S>);
+  const DiskPoseCheck check1 = checkDiskPose(X_W1, kAsGivenRotationTolerance<S>);
+  const DiskPoseCheck check2 = checkDiskPose(X_W2, kAsGivenRotationTolerance<S>);
   return {isValidDiskRadius(r1) && isValidDiskRadius(r2) && check1.valid && check2.valid,
           check1.orthonormal, check2.orthonormal};
 }
@@ -136,7 +129,7 @@ struct PairInFrame1 {
                                        X_W2.linear().template cast<double>()),
                 double(r1), double(r2));
   }
-  /// The same for a valid pair (isValidDiskPair).
+  /// The same for a valid pair (checkDiskPair(...).valid).
   template <typename S>
   static PairInFrame1 fromWorld(S r1, const Eigen::Transform<S, 3, Eigen::Isometry>& X_W1, S r2,
                                 const Eigen::Transform<S, 3, Eigen::Isometry>& X_W2) {
