@@ -215,29 +215,51 @@ struct GenericDiskShapePair {
     return toWorld(X_WS, solveInShapeFrame(diskInShape(radius, X_WD, X_WS), shape));
   }
 
+  /// Whether the Traits' closed form (if it has one) certifies itself on
+  /// `disk`; its answer in `solution` if so.
+  static bool closedFormSolves([[maybe_unused]] const DiskInShape& disk,
+                               [[maybe_unused]] const Shape& shape, [[maybe_unused]] double scale,
+                               [[maybe_unused]] DiskShapeSolution* solution) {
+    if constexpr (kHasClosedForm<Traits>) {
+      const LeafToDisk closed = Traits::closedForm(disk, shape, scale);
+      if (!closed.exact) return false;
+      solution->p = closed.p_disk;
+      solution->q = closed.p_leaf;
+      solution->distance = closed.distance;
+      solution->lower_bound = closed.certified;
+      return true;
+    }
+    return false;
+  }
+
+  /// The disk the pair's solvers work on: `given` itself, unless the Traits
+  /// have a closed form and `given`'s axes are not orthonormal to double
+  /// rounding (poses in float, ~1e-7), then rebuilt with its normal
+  /// (DiskInShape::withOrthonormalAxes). The closed forms certify to 1e-13 of
+  /// the scale only the disk, never the ellipse `given` is 1e-7 off it. The
+  /// generic solver is exact on that ellipse ({c + s_x u + s_y v : |s| <= r},
+  /// whose support DiskInShape::support is), which lies within float's
+  /// rounding of the disk, and is not slowed by it.
+  static DiskInShape solvedDisk(const DiskInShape& given) {
+    if constexpr (kHasClosedForm<Traits>) {
+      if (!given.hasOrthonormalAxes()) return given.withOrthonormalAxes();
+    }
+    return given;
+  }
+
   /// distance() in the shape's frame, for a valid pair: the Traits' closed
   /// form where it certifies itself (Traits::closedForm, if it has one and
   /// `try_closed_form`: callers that tried it already pass false), else the
-  /// generic solver.
-  static DiskShapeSolution solveInShapeFrame(const DiskInShape& disk, const Shape& shape,
+  /// generic solver, on solvedDisk(given).
+  static DiskShapeSolution solveInShapeFrame(const DiskInShape& given, const Shape& shape,
                                              bool try_closed_form = true) {
+    const DiskInShape disk = solvedDisk(given);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
-    if constexpr (kHasClosedForm<Traits>) {
-      if (try_closed_form) {
-        const LeafToDisk closed = Traits::closedForm(disk, shape, scale);
-        if (closed.exact) {
-          DiskShapeSolution solution;
-          solution.p = closed.p_disk;
-          solution.q = closed.p_leaf;
-          solution.distance = closed.distance;
-          solution.lower_bound = closed.certified;
-          return solution;
-        }
-      }
-    }
+    DiskShapeSolution solution;
+    if (try_closed_form && closedFormSolves(disk, shape, scale, &solution)) return solution;
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
-    DiskShapeSolution solution = solveDiskShape(target, disk, rho, scale, SolverGoal::distance);
+    solution = solveDiskShape(target, disk, rho, scale, SolverGoal::distance);
     std::optional<Separation> separation;
     if (overlapLeftOpen(target, disk, rho, solution, scale, &separation)) {
       // Overlap: distance 0 at the solver's point, whose distance to the
@@ -261,25 +283,24 @@ struct GenericDiskShapePair {
   }
 
   /// intersect() in the shape's frame, for a valid pair.
-  static bool intersectInShapeFrame(const DiskInShape& disk, const Shape& shape,
+  /// On solvedDisk(given), as solveInShapeFrame.
+  static bool intersectInShapeFrame(const DiskInShape& given, const Shape& shape,
                                     FrameContact* contact) {
+    const DiskInShape disk = solvedDisk(given);
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     const double touching = kShapeTouchingTolerance * scale;
-    if constexpr (kHasClosedForm<Traits>) {
-      // The closed form distance() tries first decides here too, so that a
-      // pair at distance 0 intersects.
-      const LeafToDisk closed = Traits::closedForm(disk, shape, scale);
-      if (closed.exact) {
-        if (!(closed.distance <= touching)) return false;
-        if (contact) {
-          contact->pos = 0.5 * (closed.p_disk + closed.p_leaf);
-          contact->separation =
-              shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
-        }
-        return true;
+    // The closed form distance() tries first decides here too, so that a pair
+    // at distance 0 intersects.
+    DiskShapeSolution closed;
+    if (closedFormSolves(disk, shape, scale, &closed)) {
+      if (!(closed.distance <= touching)) return false;
+      if (contact) {
+        contact->pos = 0.5 * (closed.p + closed.q);
+        contact->separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
       }
+      return true;
     }
     const DiskShapeSolution solution =
         solveDiskShape(target, disk, rho, scale, SolverGoal::intersection);

@@ -19,6 +19,11 @@
 //   template <typename Visit> void forEachFace(Visit&& visit) const;
 //     // polygonal faces (box, triangle, convex):
 //     // visit(unit outward normal, vertex count, vertex(i) -> Vec3)
+// A Target whose projection and support describe sets that may lie apart (a
+// Convex whose faces are planar only to rounding) says by how much:
+//   double supportMismatch() const;  // a length >= 0; 0 when not provided
+// The certificate compares the two sets, so it closes at that much more gap,
+// and the answer is exact to it (docs/disk_shape_distance.md, section 4).
 #pragma once
 
 #include <Eigen/Core>
@@ -116,6 +121,22 @@ struct DiskInShape {
     const double length = s.norm();
     return length > r ? Vec2(s.x() * (r / length), s.y() * (r / length)) : s;
   }
+  /// Whether u, v are orthonormal to within kOrthonormalInDouble (|u.u - 1|,
+  /// |v.v - 1|, |u.v|): so in double; poses in float (~1e-7) are not.
+  bool hasOrthonormalAxes() const {
+    return std::abs(u.squaredNorm() - 1.0) <= kOrthonormalInDouble &&
+           std::abs(v.squaredNorm() - 1.0) <= kOrthonormalInDouble &&
+           std::abs(u.dot(v)) <= kOrthonormalInDouble;
+  }
+  /// The disk with centre c, radius r and normal n / |n|, in orthonormal axes
+  /// (u made orthogonal to the normal, Gram-Schmidt; v = n x u), as the
+  /// disk-disk solvers rebuild a rotation (orthonormalFrameWithNormalOf).
+  DiskInShape withOrthonormalAxes() const {
+    const Vec3 unit_n = n * (1.0 / std::sqrt(n.squaredNorm()));
+    const Vec3 in_plane = u - unit_n.dot(u) * unit_n;
+    const Vec3 unit_u = in_plane * (1.0 / std::sqrt(in_plane.squaredNorm()));
+    return DiskInShape{c, unit_u, unit_n.cross(unit_u), unit_n, r};
+  }
 };
 
 /// The disk of radius r and pose X_WD in the frame S of a shape with pose X_WS
@@ -129,6 +150,17 @@ DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD, const fcl::Tra
       X_WD.translation().template cast<double>() - X_WS.translation().template cast<double>();
   const Vec3 u = R_WS.transpose() * R_WD.col(0), v = R_WS.transpose() * R_WD.col(1);
   return DiskInShape{R_WS.transpose() * offset, u, v, u.cross(v), double(radius)};
+}
+
+/// diskInShape with orthonormal axes (DiskInShape::withOrthonormalAxes where
+/// they are not): for a query that solves many leaves against one disk (a
+/// mesh's triangles, an octree's cells), whose closed forms certify only the
+/// disk of orthonormal axes (GenericDiskShapePair::solvedDisk).
+template <typename S>
+DiskInShape orthonormalDiskInShape(S radius, const fcl::Transform3<S>& X_WD,
+                                   const fcl::Transform3<S>& X_WS) {
+  const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+  return disk.hasOrthonormalAxes() ? disk : disk.withOrthonormalAxes();
 }
 
 /// A point of frame S in the world.
@@ -759,6 +791,22 @@ void tryFaces(const Target& target, const DiskInShape& disk, double gap_toleranc
   });
 }
 
+template <typename Target, typename = void>
+struct HasSupportMismatch : std::false_type {};
+template <typename Target>
+struct HasSupportMismatch<Target, std::void_t<decltype(std::declval<const Target&>().supportMismatch())>>
+    : std::true_type {};
+
+/// The Target's supportMismatch(), 0 if it has none.
+template <typename Target>
+double supportMismatchOf(const Target& target) {
+  if constexpr (HasSupportMismatch<Target>::value) {
+    return target.supportMismatch();
+  } else {
+    return 0.0;
+  }
+}
+
 /// Minimises psi(s) = dist(x(s), X)^2 / 2 over the disk |s| <= r by the feasible
 /// Newton iteration of docs/disk_shape_distance.md section 3 and certifies the
 /// answer; the result is for X inflated by rho (>= 0). `scale` sets every
@@ -768,8 +816,13 @@ template <typename Target>
 DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, double rho,
                                  double scale, SolverGoal goal) {
   const double r = disk.r;
-  const double gap_tolerance = kShapeGapTolerance * scale;
-  const double touching = kShapeTouchingTolerance * scale;
+  // Both tolerances widen by the Target's supportMismatch: its projection
+  // and support describe sets that far apart, so neither a gap nor a distance
+  // below it can be resolved (an overlap would end at distance ~mismatch,
+  // open, and go through the fallback searches).
+  const double mismatch = supportMismatchOf(target);
+  const double gap_tolerance = kShapeGapTolerance * scale + mismatch;
+  const double touching = kShapeTouchingTolerance * scale + mismatch;
   DiskShapeSolution face;
   if (faceCase(target, disk, rho, touching, &face)) return face;
   // Start: kStartProjections alternating projections from the disk's centre.
@@ -786,8 +839,9 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
     // intersection goal needs it only while its answer is undecided.
     auto undecided = [&] {
       const double open_distance = std::sqrt(2.0 * at.psi) - rho;
-      return goal == SolverGoal::distance ? open_distance - lower > kShapeFallbackGap * scale
-                                          : open_distance > touching && !(lower > touching);
+      return goal == SolverGoal::distance
+                 ? open_distance - lower > kShapeFallbackGap * scale + mismatch
+                 : open_distance > touching && !(lower > touching);
     };
     if constexpr (HasFlatEnds<Target>::value) {
       if (rho == 0.0 && undecided()) tryFlatEnds(target, disk, gap_tolerance, scale, &at, &lower);

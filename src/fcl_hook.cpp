@@ -376,7 +376,7 @@ struct DiskMeshTraversal {
     if (request.isSatisfied(result)) return result.min_distance;
     const auto& model = *static_cast<const fcl::BVHModel<BV>*>(mesh);
     const internal::MeshDistanceAnswer answer = internal::diskMeshDistance(
-        internal::diskInShape(disk.radius, X_WD, X_WM), model, double(result.min_distance),
+        internal::orthonormalDiskInShape(disk.radius, X_WD, X_WM), model, double(result.min_distance),
         double(request.rel_err), double(request.abs_err));
     if (answer.triangle >= 0) {
       result.update(S(answer.distance), mesh, &disk, answer.triangle,
@@ -420,7 +420,7 @@ struct DiskMeshTraversal {
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_mesh_frame;
-    const internal::DiskInFrameNarrowPhase<S> narrow(internal::diskInShape(disk.radius, X_WD, X_WM));
+    const internal::DiskInFrameNarrowPhase<S> narrow(internal::orthonormalDiskInShape(disk.radius, X_WD, X_WM));
     fcl::detail::MeshShapeCollisionTraversalNode<BV, Disk<S>, internal::DiskInFrameNarrowPhase<S>> node;
     const Transform3<S> X_MD = relativePose(X_WM, X_WD);
     node.model1 = &model;
@@ -479,7 +479,7 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
                     const fcl::DistanceRequest<S>& request, fcl::DistanceResult<S>& result) {
     if (request.isSatisfied(result)) return result.min_distance;
     const internal::OcTreeDistanceAnswer answer = internal::diskOcTreeDistance(
-        internal::diskInShape(disk.radius, X_WD, X_WO), *static_cast<const fcl::OcTree<S>*>(octree),
+        internal::orthonormalDiskInShape(disk.radius, X_WD, X_WO), *static_cast<const fcl::OcTree<S>*>(octree),
         double(result.min_distance), double(request.rel_err), double(request.abs_err));
     if (answer.found) {
       result.update(S(answer.distance), octree, &disk, answer.cell, fcl::DistanceResult<S>::NONE,
@@ -508,7 +508,7 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_octree_frame;
-    const internal::DiskInFrameNarrowPhase<S> narrow(internal::diskInShape(disk.radius, X_WD, X_WO));
+    const internal::DiskInFrameNarrowPhase<S> narrow(internal::orthonormalDiskInShape(disk.radius, X_WD, X_WO));
     fcl::detail::OcTreeShapeCollide<Disk<S>, internal::DiskInFrameNarrowPhase<S>>(
         octree, Transform3<S>::Identity(), &disk, relativePose(X_WO, X_WD), &narrow, room_left,
         in_octree_frame);

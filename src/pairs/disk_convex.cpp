@@ -52,6 +52,10 @@ struct ConvexGeometry {
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
+  /// The largest spread of a face's vertices along its normal: 0 for planar
+  /// faces up to rounding; ~1e-7 of the size for quadrilaterals whose
+  /// vertices were rounded to float, or data planar only to its precision.
+  double face_thickness = 0.0;
 };
 
 /// The geometry of the Convex queried last on this thread, with a copy of the
@@ -82,6 +86,7 @@ struct ConvexTarget {
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& points;
   int largest_face;
   bool flat;
+  double face_thickness;
 
   explicit ConvexTarget(const fcl::Convex<S>& shape, const ConvexGeometry& geometry)
       : convex(&shape),
@@ -91,7 +96,8 @@ struct ConvexTarget {
         planes(geometry.planes),
         points(geometry.points),
         largest_face(geometry.largest_face),
-        flat(geometry.flat) {}
+        flat(geometry.flat),
+        face_thickness(geometry.face_thickness) {}
 
   static ConvexGeometryCache<S>& cache() {
     thread_local ConvexGeometryCache<S> cache;
@@ -182,8 +188,13 @@ struct ConvexTarget {
       Vec3 centre = Vec3::Zero();
       for (int i = 0; i < count; ++i) centre += vertex(index[i]);
       centre /= count;
-      double radius = 0.0;
-      for (int i = 0; i < count; ++i) radius = std::max(radius, safeNorm(vertex(index[i]) - centre));
+      double radius = 0.0, lowest = 0.0, highest = 0.0;
+      for (int i = 0; i < count; ++i) {
+        radius = std::max(radius, safeNorm(vertex(index[i]) - centre));
+        const double height = unit.dot(vertex(index[i]) - centre);
+        lowest = std::min(lowest, height), highest = std::max(highest, height);
+      }
+      geometry.face_thickness = std::max(geometry.face_thickness, highest - lowest);
       faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre, radius});
       geometry.planes.row(f) << unit.transpose(), faces.back().offset;
       at += count + 1;
@@ -305,6 +316,12 @@ struct ConvexTarget {
     along.noalias() = points.col(0) * w.x() + points.col(1) * w.y() + points.col(2) * w.z();
     return along;
   }
+
+  /// How far apart the polytope of the face planes (project) and the hull of
+  /// the vertices (support) may be: the faces' thickness, by which a
+  /// certificate comparing the two cannot close (supportMismatch in
+  /// disk_shape_solver.h).
+  double supportMismatch() const { return face_thickness; }
 
   /// max over the vertices of w.v.
   double supportValue(const Vec3& w) const { return alongVertices(w).maxCoeff(); }
