@@ -45,6 +45,8 @@
 // fcl::distance on CollisionObjects, timed like the disk pairs above:
 //   disk                    Disk(r) against X, default request: whatever answers a
 //                           Disk in this build;
+//   disk_float              the same in float (Disk<float>, the shape and the
+//                           poses rounded to float);
 //   sphere_<libccd|indep>   FCL's Sphere(r) at the disk's pose against X: the
 //                           baseline (time only: no reference for it here);
 //   gjk_<libccd|indep>      FCL on a real Cylinder(r, 0) at the disk's pose: GJK on
@@ -697,21 +699,34 @@ double shapeReference(const dsc::CaseSpec& spec) {
   return double(oracle::referenceDistance(disk, shape, X));
 }
 
-enum ShapeSolver { kDisk, kSphereLibccd, kSphereIndep, kGjkLibccd, kGjkIndep, kNumShapeSolvers };
+/// kDiskFloat: Disk<float> against the shape in float, the case's dimensions
+/// and poses rounded to float.
+enum ShapeSolver {
+  kDisk,
+  kDiskFloat,
+  kSphereLibccd,
+  kSphereIndep,
+  kGjkLibccd,
+  kGjkIndep,
+  kNumShapeSolvers
+};
 
 const char* shapeSolverName(int s) {
-  static const char* const names[] = {"disk", "sphere_libccd", "sphere_indep", "gjk_libccd",
-                                      "gjk_indep"};
+  static const char* const names[] = {"disk", "disk_float", "sphere_libccd", "sphere_indep",
+                                      "gjk_libccd", "gjk_indep"};
   return names[s];
 }
 
 /// Whether the solver answers the disk's question (and so has an error).
-bool answersDisk(int s) { return s == kDisk || s == kGjkLibccd || s == kGjkIndep; }
+bool answersDisk(int s) {
+  return s == kDisk || s == kDiskFloat || s == kGjkLibccd || s == kGjkIndep;
+}
 
 struct ShapePair {
   dsc::CaseSpec spec;
   double reference = std::nan("");  ///< d_ref (rounded to double); NaN without reference
   std::unique_ptr<fcl::CollisionObjectd> disk, sphere, flat_cylinder, shape;
+  std::unique_ptr<fcl::CollisionObjectf> disk_float, shape_float;
 };
 
 ShapePair prepareShapePair(dsc::CaseSpec spec) {
@@ -724,12 +739,22 @@ ShapePair prepareShapePair(dsc::CaseSpec spec) {
       std::make_unique<fcl::CollisionObjectd>(std::make_shared<fcl::Cylinderd>(r, 0.0), X_WD);
   p.shape = std::make_unique<fcl::CollisionObjectd>(dsc::makeShape<double>(spec.shape),
                                                     dsc::toS<double>(spec.X_WS));
+  p.disk_float = std::make_unique<fcl::CollisionObjectf>(
+      std::make_shared<fcl_disk::Diskf>(float(r)), dsc::toS<float>(spec.X_WD));
+  p.shape_float = std::make_unique<fcl::CollisionObjectf>(dsc::makeShape<float>(spec.shape),
+                                                          dsc::toS<float>(spec.X_WS));
   p.spec = std::move(spec);
   return p;
 }
 
 /// One fcl::distance of `solver` on `pair`, a fresh request and result; FCL's raw value.
 inline double shapeQuery(int solver, const ShapePair& pair) {
+  if (solver == kDiskFloat) {
+    fcl::DistanceRequestf request;
+    fcl::DistanceResultf result;
+    fcl::distance(pair.disk_float.get(), pair.shape_float.get(), request, result);
+    return double(result.min_distance);
+  }
   fcl::DistanceRequestd request;
   request.gjk_solver_type =
       solver == kSphereIndep || solver == kGjkIndep ? fcl::GST_INDEP : fcl::GST_LIBCCD;
@@ -906,7 +931,8 @@ int runShapeSection(const Options& options, double clock_ns) {
               machineName().c_str(), sysconf(_SC_NPROCESSORS_ONLN), options.reps,
               options.batch_ns, clock_ns, run_seconds);
   std::printf("Cases: disk r = 0.5 and a shape of size ~0.5 (bench/disk_shape_cases.h), centres "
-              "uniform in the unit ball, uniform rotations. disk = Disk(r) against X; sphere = "
+              "uniform in the unit ball, uniform rotations. disk = Disk(r) against X (float "
+              "disk: the same on Disk<float>, shape and poses rounded to float); sphere = "
               "FCL's Sphere(r) against X at the disk's pose; GJK = FCL on Cylinder(r, 0) at the "
               "disk's pose. Sphere and GJK columns: the faster of libccd / indep (named).\n");
   if (kHaveShapeReference) {
@@ -920,10 +946,12 @@ int runShapeSection(const Options& options, double clock_ns) {
   }
   std::printf("| shape | cases | overlap | disk median ns | disk p99 ns | sphere median ns | GJK "
               "flat cylinder median ns | disk / sphere | GJK / disk | disk max err | GJK max "
-              "err |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+              "err | float disk median / p99 ns | float / double, median / p99 | float disk "
+              "max err |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const ShapeSummary& s : summaries) {
     const ShapeSolverSummary& disk = s.solvers[kDisk];
+    const ShapeSolverSummary& disk_float = s.solvers[kDiskFloat];
     const int sphere = faster(s, kSphereLibccd, kSphereIndep);
     const int gjk = faster(s, kGjkLibccd, kGjkIndep);
     auto named = [&](int index) {
@@ -941,12 +969,21 @@ int runShapeSection(const Options& options, double clock_ns) {
     if (disk.measured && gjk >= 0)
       std::snprintf(gjk_over_disk, sizeof gjk_over_disk, "%.1fx",
                     s.solvers[gjk].median_ns / disk.median_ns);
-    std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", s.shape.c_str(),
-                s.pairs, overlap, ns(disk).c_str(),
+    std::string float_times = "-";
+    char float_over_double[48] = "-";
+    if (disk_float.measured) {
+      float_times = formatNs(disk_float.median_ns) + " / " + formatNs(disk_float.p99_ns);
+      if (disk.measured)
+        std::snprintf(float_over_double, sizeof float_over_double, "%.2fx / %.2fx",
+                      disk_float.median_ns / disk.median_ns, disk_float.p99_ns / disk.p99_ns);
+    }
+    std::printf("| %s | %zu | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n",
+                s.shape.c_str(), s.pairs, overlap, ns(disk).c_str(),
                 disk.measured ? formatNs(disk.p99_ns).c_str() : "-",
                 named(sphere).c_str(), named(gjk).c_str(), disk_over_sphere,
                 gjk_over_disk, err(disk).c_str(),
-                gjk >= 0 ? err(s.solvers[gjk]).c_str() : "-");
+                gjk >= 0 ? err(s.solvers[gjk]).c_str() : "-", float_times.c_str(),
+                float_over_double, err(disk_float).c_str());
   }
   bool any_skipped = false;
   for (const ShapeSummary& s : summaries)

@@ -7,7 +7,8 @@ Reads shapes.csv (one row per shape, as fcl_disk_report writes it) and draws, pe
 shape (colour) and query (marker): a filled marker at (median ns/query, max error
 relative to scale) and a hollow one at (median ns/query, median error), a
 horizontal whisker from the median to the p99 time. Queries: disk (Disk(r)
-against the shape through fcl::distance), gjk_libccd / gjk_indep (FCL on
+against the shape through fcl::distance), disk_float (the same in float, whose
+error is float's rounding), gjk_libccd / gjk_indep (FCL on
 Cylinder(r, 0), the same disk), sphere_libccd / sphere_indep (FCL's Sphere(r):
 time only, no reference, drawn in the "time only" strip at the bottom, as are
 queries whose error was not computed). Errors of zero and below 1e-17 are drawn
@@ -32,6 +33,7 @@ BOUND = 1e-12
 QUERIES = [
     # (column prefix, marker, label, has error)
     ("disk", "o", "Disk(r) - X (fcl::distance)", True),
+    ("disk_float", "P", "Disk(r) - X in float (fcl::distance)", True),
     ("gjk_libccd", "^", "FCL GJK libccd on Cylinder(r, 0)", True),
     ("gjk_indep", "v", "FCL GJK indep on Cylinder(r, 0)", True),
     ("sphere_libccd", "s", "FCL Sphere(r) - X, libccd (time only)", False),
