@@ -52,6 +52,24 @@ bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
   return isValidDiskRadius(radius) && isValidDiskPose(X_WD) && isValidDiskPose(X_WS);
 }
 
+/// isValidDiskAndShapePose's verdict, and whether both rotations are used as
+/// given (checkDiskPose with kAsGivenRotationTolerance: in double, within
+/// kOrthonormalInDouble; in float never), so that the disk's axes in the
+/// shape's frame are orthonormal to double rounding: one pass over each pose.
+struct DiskAndShapePoseCheck {
+  bool valid;
+  bool orthonormal;
+};
+
+template <typename S>
+DiskAndShapePoseCheck checkDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
+                                            const fcl::Transform3<S>& X_WS) {
+  const DiskPoseCheck disk = checkDiskPose(X_WD, kAsGivenRotationTolerance<S>);
+  const DiskPoseCheck shape = checkDiskPose(X_WS, kAsGivenRotationTolerance<S>);
+  return {isValidDiskRadius(radius) && disk.valid && shape.valid,
+          disk.orthonormal && shape.orthonormal};
+}
+
 template <typename S>
 DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
                                    const DiskShapeSolution& solution) {
@@ -209,10 +227,10 @@ struct GenericDiskShapePair {
 
   static DiskShapeDistanceResult<S> distance(S radius, const fcl::Transform3<S>& X_WD,
                                              const Shape& shape, const fcl::Transform3<S>& X_WS) {
-    if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) {
-      return nanDiskShapeResult<S>();
-    }
-    return toWorld(X_WS, solveInShapeFrame(diskInShape(radius, X_WD, X_WS), shape));
+    const DiskAndShapePoseCheck poses = checkDiskAndShapePose(radius, X_WD, X_WS);
+    if (!poses.valid || !Traits::valid(shape)) return nanDiskShapeResult<S>();
+    return toWorld(X_WS, solveInShapeFrame(
+                             solvedDiskInShape(radius, X_WD, X_WS, poses.orthonormal), shape));
   }
 
   /// Whether the Traits' closed form (if it has one) certifies itself on
@@ -232,28 +250,31 @@ struct GenericDiskShapePair {
     return false;
   }
 
-  /// The disk the pair's solvers work on: `given` itself, unless the Traits
-  /// have a closed form and `given`'s axes are not orthonormal to double
-  /// rounding (poses in float, ~1e-7), then rebuilt with its normal
-  /// (DiskInShape::withOrthonormalAxes). The closed forms certify to 1e-13 of
-  /// the scale only the disk, never the ellipse `given` is 1e-7 off it. The
-  /// generic solver is exact on that ellipse ({c + s_x u + s_y v : |s| <= r},
-  /// whose support DiskInShape::support is), which lies within float's
-  /// rounding of the disk, and is not slowed by it.
-  static DiskInShape solvedDisk(const DiskInShape& given) {
+  /// The disk of radius `radius` and pose X_WD in the frame of the shape at
+  /// X_WS, as the pair's solvers take it; `orthonormal` is
+  /// checkDiskAndShapePose's. For Traits with a closed form its axes are
+  /// rebuilt (DiskInShape::withOrthonormalAxes) unless the poses are
+  /// orthonormal: the closed forms certify to 1e-13 of the scale only a true
+  /// disk, not the ellipse 1e-7 off it that a pose in float gives. The generic
+  /// solver is exact on that ellipse ({c + s_x u + s_y v : |s| <= r}, whose
+  /// support DiskInShape::support is), within float's rounding of the disk, so
+  /// other pairs keep it.
+  static DiskInShape solvedDiskInShape(S radius, const fcl::Transform3<S>& X_WD,
+                                       const fcl::Transform3<S>& X_WS,
+                                       [[maybe_unused]] bool orthonormal) {
     if constexpr (kHasClosedForm<Traits>) {
-      if (!given.hasOrthonormalAxes()) return given.withOrthonormalAxes();
+      if (!orthonormal) return diskInShape(radius, X_WD, X_WS).withOrthonormalAxes();
     }
-    return given;
+    return diskInShape(radius, X_WD, X_WS);
   }
 
   /// distance() in the shape's frame, for a valid pair: the Traits' closed
   /// form where it certifies itself (Traits::closedForm, if it has one and
   /// `try_closed_form`: callers that tried it already pass false), else the
-  /// generic solver, on solvedDisk(given).
-  static DiskShapeSolution solveInShapeFrame(const DiskInShape& given, const Shape& shape,
+  /// generic solver. `disk` as solvedDiskInShape gives it (the leaves of
+  /// meshes and octrees: orthonormalDiskInShape).
+  static DiskShapeSolution solveInShapeFrame(const DiskInShape& disk, const Shape& shape,
                                              bool try_closed_form = true) {
-    const DiskInShape disk = solvedDisk(given);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     DiskShapeSolution solution;
     if (try_closed_form && closedFormSolves(disk, shape, scale, &solution)) return solution;
@@ -272,9 +293,10 @@ struct GenericDiskShapePair {
 
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
-    if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !Traits::valid(shape)) return false;
+    const DiskAndShapePoseCheck poses = checkDiskAndShapePose(radius, X_WD, X_WS);
+    if (!poses.valid || !Traits::valid(shape)) return false;
     FrameContact in_shape_frame;
-    if (!intersectInShapeFrame(diskInShape(radius, X_WD, X_WS), shape,
+    if (!intersectInShapeFrame(solvedDiskInShape(radius, X_WD, X_WS, poses.orthonormal), shape,
                                contact ? &in_shape_frame : nullptr)) {
       return false;
     }
@@ -282,11 +304,10 @@ struct GenericDiskShapePair {
     return true;
   }
 
-  /// intersect() in the shape's frame, for a valid pair.
-  /// On solvedDisk(given), as solveInShapeFrame.
-  static bool intersectInShapeFrame(const DiskInShape& given, const Shape& shape,
+  /// intersect() in the shape's frame, for a valid pair; `disk` as
+  /// solveInShapeFrame's.
+  static bool intersectInShapeFrame(const DiskInShape& disk, const Shape& shape,
                                     FrameContact* contact) {
-    const DiskInShape disk = solvedDisk(given);
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();

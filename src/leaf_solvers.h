@@ -2,8 +2,9 @@
 // octree traversals call them, on a disk already posed in the leaf's frame (a
 // DiskInShape, double): the same solver runs as diskShapeDistance /
 // diskShapeIntersect with fcl::TriangleP and fcl::Box, without re-validating
-// the poses or changing frames per leaf. Defined in src/pairs/disk_triangle.cpp
-// and src/pairs/disk_box.cpp.
+// the poses or changing frames per leaf. The disk's axes must be orthonormal
+// to double rounding (orthonormalDiskInShape), as the closed forms need. Defined
+// in src/pairs/disk_triangle.cpp and src/pairs/disk_box.cpp.
 #pragma once
 
 #include "disk_shape_solver.h"
