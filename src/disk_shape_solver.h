@@ -114,6 +114,13 @@ struct DiskInShape {
     const double length = planar.norm();
     return length > 0.0 ? point(-(r / length) * planar) : c;
   }
+  /// lowestAlong(side * e_j), reading u.e_j, v.e_j off the axes (the faces of
+  /// an axis-aligned box).
+  Vec3 lowestAlongAxis(int j, double side) const {
+    const Vec2 planar(side * u[j], side * v[j]);
+    const double length = planar.norm();
+    return length > 0.0 ? point(-(r / length) * planar) : c;
+  }
   /// The disk point nearest y: y's foot on the disk's plane, clamped to the rim.
   Vec2 nearest(const Vec3& y) const { return clampedToRim(inPlane(y - c)); }
   /// The in-plane point s, clamped to the rim.

@@ -339,7 +339,7 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
   // The faces turned towards c: normal m = sign(c_j - o_j) e_j.
   for (int j = 0; j < 3; ++j) {
     const double side = disk.c[j] < o[j] ? -1.0 : 1.0;
-    const Vec3 deepest = disk.lowestAlong(side * Vec3::Unit(j));
+    const Vec3 deepest = disk.lowestAlongAxis(j, side);
     const double height = side * (deepest[j] - o[j]) - h[j];
     if (!(height > 0.0)) continue;
     lower = std::max(lower, height);
