@@ -1053,6 +1053,14 @@ Solution solveInFrame1(const PairInFrame1& pair) {
 
 }  // namespace
 
+namespace internal {
+DiskPairAnswer solveDiskPairInFrame1(const PairInFrame1& pair) {
+  const Solution solution = solveInFrame1(pair);
+  return {solution.p, solution.q, solution.distance,
+          std::min(solution.lower_bound, solution.distance)};
+}
+}  // namespace internal
+
 template <typename S>
 DiskDistanceResult<S> exactDiskDistance(S r1, const fcl::Transform3<S>& X_W1, S r2,
                                         const fcl::Transform3<S>& X_W2) {

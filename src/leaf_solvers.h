@@ -27,5 +27,10 @@ bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b
 DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half);
 bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact);
 
+/// The capsule of radius `radius` about the segment {(0, 0, z) : |z| <=
+/// half_length}: the generic solver's solution (the cylinder's side wall,
+/// src/pairs/disk_cylinder.cpp).
+DiskShapeSolution solveDiskCapsule(const DiskInShape& disk, double radius, double half_length);
+
 }  // namespace internal
 }  // namespace fcl_disk

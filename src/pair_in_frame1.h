@@ -271,5 +271,17 @@ inline std::optional<Vec3> commonPoint(const PairInFrame1& pair) {
   return chord.X0 + mid * chord.T;
 }
 
+/// exactDiskDistance's answer for a valid pair given in disk 1's frame (its
+/// rotation orthonormal to double rounding): p on disk 1, q on disk 2, both in
+/// frame 1; distance |q - p| (0 with p == q where the disks meet) and the
+/// certified lower_bound. For the pairs whose other shape has disks for faces
+/// (a cylinder's caps). Defined in src/exact_distance.cpp.
+struct DiskPairAnswer {
+  Vec3 p, q;
+  double distance;
+  double lower_bound;
+};
+DiskPairAnswer solveDiskPairInFrame1(const PairInFrame1& pair);
+
 }  // namespace internal
 }  // namespace fcl_disk

@@ -5,6 +5,7 @@
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
+#include "../leaf_solvers.h"
 
 #include <vector>
 
@@ -65,6 +66,11 @@ struct CapsuleTraits {
 template <typename S>
 struct DiskShapePair<fcl::Capsule<S>>
     : GenericDiskShapePair<S, fcl::Capsule<S>, CapsuleTraits<S>> {};
+
+DiskShapeSolution solveDiskCapsule(const DiskInShape& disk, double radius, double half_length) {
+  return DiskShapePair<fcl::Capsule<double>>::solveInShapeFrame(
+      disk, fcl::Capsule<double>(radius, 2.0 * half_length));
+}
 
 }  // namespace internal
 }  // namespace fcl_disk

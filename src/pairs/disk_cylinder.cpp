@@ -1,10 +1,13 @@
-// Disk - fcl::Cylinder (a real, solid one): the generic solver with the
-// cylinder's projection (clamp the height, clamp the radial distance) and
-// support (docs/disk_shape_distance.md, section 4); the contact's directions
+// Disk - fcl::Cylinder (a real, solid one): first the disk against the cap
+// facing its centre by the disk-disk solver, certified for the cylinder; else
+// the generic solver with the cylinder's projection (clamp the height, clamp
+// the radial distance) and support (docs/disk_shape_distance.md, section 4);
+// the contact's directions
 // make its depth the exact penetration depth (docs/penetration_depth.md,
 // section 7).
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
+#include "../leaf_solvers.h"
 
 #include <vector>
 
@@ -60,6 +63,60 @@ struct CylinderTraits {
   static CylinderTarget target(const fcl::Cylinder<S>& cylinder) {
     return CylinderTarget{double(cylinder.radius), 0.5 * double(cylinder.lz)};
   }
+  /// Two exact cases, each a simpler pair (docs/disk_shape_distance.md,
+  /// section 4):
+  /// - the side wall: the cylinder lies in the capsule of its radius about
+  ///   its axis, and the two share every point with |z| <= half_length. So
+  ///   where the capsule's nearest point (solveDiskCapsule) has |z| <=
+  ///   half_length, it is on the cylinder, and the capsule's answer and
+  ///   certificate are the cylinder's;
+  /// - a cap: a cap is a disk and the cylinder the hull of its caps. Where
+  ///   the nearest pair of the disk and a cap (the disk-disk solver,
+  ///   solveDiskPairInFrame1, in the cap's frame: the shape's, shifted) is the
+  ///   cylinder's, the certificate along it with the cylinder's support closes.
+  ///   A disk meeting a cap meets the cylinder: distance 0 at the common point.
+  /// The cap facing the disk's centre is tried first when the centre lies
+  /// beyond that cap's plane, then the side wall, then the cap beyond which
+  /// the capsule's point lies. What neither settles (an optimum at a cap's
+  /// rim seen from the side, where the certificate along one pair can stay
+  /// open) goes to the generic solver. `disk`'s axes are orthonormal
+  /// (solvedDiskInShape).
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Cylinder<S>& cylinder,
+                               double scale) {
+    const CylinderTarget cylinder_target = target(cylinder);
+    const double h = cylinder_target.half_length;
+    const auto against_cap = [&](double side) {
+      const Vec3 cap_centre(0.0, 0.0, side * h);
+      Mat3 axes;
+      axes << disk.u, disk.v, disk.n;
+      const DiskPairAnswer cap = solveDiskPairInFrame1(
+          PairInFrame1::make(disk.c - cap_centre, axes, cylinder_target.radius, disk.r));
+      const Vec3 p_cap = cap_centre + cap.p, p_disk = cap_centre + cap.q;
+      if (cap.distance == 0.0) return certifiedOrBound(0.0, 0.0, p_disk, p_disk, scale);
+      const double lower = certificateAlong(cylinder_target, disk, 0.0, p_cap - p_disk);
+      return certifiedOrBound(lower, cap.distance, p_disk, p_cap, scale);
+    };
+    const double centre_side = disk.c.z() < 0.0 ? -1.0 : 1.0;
+    const bool beyond_cap = std::abs(disk.c.z()) > h;
+    if (beyond_cap) {
+      const LeafToDisk cap = against_cap(centre_side);
+      if (cap.exact) return cap;
+    }
+    const DiskShapeSolution wall = solveDiskCapsule(disk, cylinder_target.radius, h);
+    if (std::abs(wall.q.z()) <= h) {
+      LeafToDisk answer;
+      answer.exact = true;
+      answer.distance = wall.distance;
+      answer.certified = wall.lower_bound;
+      answer.p_disk = wall.p;
+      answer.p_leaf = wall.q;
+      return answer;
+    }
+    const double wall_side = wall.q.z() < 0.0 ? -1.0 : 1.0;
+    if (!beyond_cap || wall_side != centre_side) return against_cap(wall_side);
+    return LeafToDisk{};
+  }
+
   /// The directions among which the shortest separating translation lies
   /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth. The cylinder's support, h(-w) =
