@@ -5,6 +5,7 @@
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
+#include "flat_end_pair.h"
 
 #include <vector>
 
@@ -151,6 +152,15 @@ struct ConeTraits {
   static double inflation(const fcl::Cone<S>&) { return 0.0; }
   static ConeTarget target(const fcl::Cone<S>& cone) {
     return ConeTarget{double(cone.radius), 0.5 * double(cone.lz)};
+  }
+  /// A disk whose centre lies beyond the base's plane is usually nearest the
+  /// base, a disk (diskAgainstFlatEnd: exact where the certificate along the
+  /// disk-base pair closes); the others, and those it leaves open, go to the
+  /// generic solver. `disk`'s axes are orthonormal (solvedDiskInShape).
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Cone<S>& cone, double scale) {
+    const ConeTarget cone_target = target(cone);
+    if (!(disk.c.z() < -cone_target.half_length)) return LeafToDisk{};
+    return diskAgainstFlatEnd(disk, cone_target, cone_target.flatEnds()[0], scale);
   }
   /// The directions among which the shortest separating translation lies
   /// (shortestSeparation adds the disk's normals and both signs), so the contact's

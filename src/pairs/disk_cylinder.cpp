@@ -8,6 +8,7 @@
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 #include "../leaf_solvers.h"
+#include "flat_end_pair.h"
 
 #include <vector>
 
@@ -70,11 +71,8 @@ struct CylinderTraits {
   ///   where the capsule's nearest point (solveDiskCapsule) has |z| <=
   ///   half_length, it is on the cylinder, and the capsule's answer and
   ///   certificate are the cylinder's;
-  /// - a cap: a cap is a disk and the cylinder the hull of its caps. Where
-  ///   the nearest pair of the disk and a cap (the disk-disk solver,
-  ///   solveDiskPairInFrame1, in the cap's frame: the shape's, shifted) is the
-  ///   cylinder's, the certificate along it with the cylinder's support closes.
-  ///   A disk meeting a cap meets the cylinder: distance 0 at the common point.
+  /// - a cap (diskAgainstFlatEnd): where the disk-disk pair of the disk and
+  ///   a cap is the cylinder's, the certificate along it closes.
   /// The cap facing the disk's centre is tried first when the centre lies
   /// beyond that cap's plane, then the side wall, then the cap beyond which
   /// the capsule's point lies. What neither settles (an optimum at a cap's
@@ -86,15 +84,8 @@ struct CylinderTraits {
     const CylinderTarget cylinder_target = target(cylinder);
     const double h = cylinder_target.half_length;
     const auto against_cap = [&](double side) {
-      const Vec3 cap_centre(0.0, 0.0, side * h);
-      Mat3 axes;
-      axes << disk.u, disk.v, disk.n;
-      const DiskPairAnswer cap = solveDiskPairInFrame1(
-          PairInFrame1::make(disk.c - cap_centre, axes, cylinder_target.radius, disk.r));
-      const Vec3 p_cap = cap_centre + cap.p, p_disk = cap_centre + cap.q;
-      if (cap.distance == 0.0) return certifiedOrBound(0.0, 0.0, p_disk, p_disk, scale);
-      const double lower = certificateAlong(cylinder_target, disk, 0.0, p_cap - p_disk);
-      return certifiedOrBound(lower, cap.distance, p_disk, p_cap, scale);
+      return diskAgainstFlatEnd(disk, cylinder_target, FlatEnd{side * h, cylinder_target.radius},
+                                scale);
     };
     const double centre_side = disk.c.z() < 0.0 ? -1.0 : 1.0;
     const bool beyond_cap = std::abs(disk.c.z()) > h;
