@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "disk_shape_solver.h"
 
@@ -134,6 +135,76 @@ inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_dis
   return answer;
 }
 
+/// The points where a polytope's edge from vertex i to vertex j meets the
+/// disk's plane, in the disk's in-plane coordinates, given each vertex's
+/// height a over the plane and in-plane coordinates (x, y): a vertex on the
+/// plane is itself such a point. The section of a convex polytope by the plane
+/// is their convex hull. At most kMaxSectionPoints (a box: its 12 edges).
+struct PlaneSection {
+  static constexpr int kMaxSectionPoints = 12;
+  Vec2 points[kMaxSectionPoints];
+  int count = 0;
+
+  void addEdge(double a_i, double x_i, double y_i, double a_j, double x_j, double y_j) {
+    if (!((a_i < 0.0 && a_j > 0.0) || (a_i > 0.0 && a_j < 0.0)) || count == kMaxSectionPoints) {
+      return;
+    }
+    const double t = a_i / (a_i - a_j);
+    points[count++] = Vec2(x_i + t * (x_j - x_i), y_i + t * (y_j - y_i));
+  }
+  void addVertexOnPlane(double a, double x, double y) {
+    if (a == 0.0 && count < kMaxSectionPoints) points[count++] = Vec2(x, y);
+  }
+
+  /// A point of the section within the disk of radius r about the origin (the
+  /// disk's centre), if the section meets it: a section point within the
+  /// rim; else the point nearest the centre of a segment between two section
+  /// points (inside the convex section) that passes within the rim, which a
+  /// boundary edge crossing the rim is; else the centre, when a triangle of
+  /// positive area of the fan from the first point contains it (the fan
+  /// covers the section).
+  /// The disk lies in the plane, so it meets the polytope iff it meets the
+  /// section.
+  std::optional<Vec2> commonPointWithDisk(double r) const {
+    const double r_squared = r * r;
+    for (int i = 0; i < count; ++i) {
+      if (points[i].squaredNorm() <= r_squared) return points[i];
+    }
+    for (int i = 0; i < count; ++i) {
+      for (int j = i + 1; j < count; ++j) {
+        const Vec2 edge = points[j] - points[i];
+        const double length_squared = edge.squaredNorm();
+        if (!(length_squared > 0.0)) continue;
+        const double t = std::clamp(-points[i].dot(edge) / length_squared, 0.0, 1.0);
+        const Vec2 nearest = points[i] + t * edge;
+        if (nearest.squaredNorm() <= r_squared) return nearest;
+      }
+    }
+    const auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
+    for (int i = 1; i < count; ++i) {
+      for (int j = i + 1; j < count; ++j) {
+        const double s0 = cross(points[0], points[i]), s1 = cross(points[i], points[j]),
+                     s2 = cross(points[j], points[0]);
+        // s0 + s1 + s2 is twice the signed area: a flat triangle is a segment,
+        // which the pairs above decided.
+        if (s0 + s1 + s2 != 0.0 && ((s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) ||
+                                    (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0))) {
+          return Vec2::Zero();
+        }
+      }
+    }
+    return std::nullopt;
+  }
+};
+
+/// A leaf met by the disk at the section's common point s: distance 0.
+inline LeafToDisk meetingAt(const DiskInShape& disk, const Vec2& s) {
+  LeafToDisk answer;
+  answer.exact = true;
+  answer.p_disk = answer.p_leaf = disk.point(s);
+  return answer;
+}
+
 /// The distance from the origin to the closed 2D triangle p0 p1 p2 (or a lower
 /// bound 0 for a degenerate one whose line passes through the origin).
 inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) {
@@ -215,6 +286,15 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
     }
     answer.p_disk = answer.p_leaf;
     return answer;
+  }
+  if (crosses) {  // not every vertex over the disk: the section decides a meeting
+    PlaneSection section;
+    for (int i = 0; i < 3; ++i) {
+      const int j = (i + 1) % 3;
+      section.addVertexOnPlane(a[i], foot[i].x(), foot[i].y());
+      section.addEdge(a[i], foot[i].x(), foot[i].y(), a[j], foot[j].x(), foot[j].y());
+    }
+    if (const auto common = section.commonPointWithDisk(disk.r)) return meetingAt(disk, *common);
   }
   // (1), with rho_min the distance from the axis to the projected triangle.
   const double rho_gap = std::max(originToTriangle2(foot[0], foot[1], foot[2]) - disk.r, 0.0);
@@ -326,6 +406,17 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
     answer.p_leaf = corner(k);
     answer.p_disk = disk.point(Vec2(x[k], y[k]));
     return answer;
+  }
+  if (crosses) {  // not every corner over the disk: the section decides a meeting
+    PlaneSection section;
+    for (int k = 0; k < 8; ++k) {
+      section.addVertexOnPlane(a[k], x[k], y[k]);
+      for (int i = 0; i < 3; ++i) {  // the edge to the corner with bit i set
+        const int l = k | (1 << i);
+        if (l != k) section.addEdge(a[k], x[k], y[k], a[l], x[l], y[l]);
+      }
+    }
+    if (const auto common = section.commonPointWithDisk(disk.r)) return meetingAt(disk, *common);
   }
   double lower = diskAlignedBoxLowerBound(disk, o, h);
   // The nearest corner.

@@ -557,6 +557,53 @@ TEST(DiskShapeCases, PolytopesAtTheEndsOfTheLengthRange) {
 }
 
 
+template <typename S>
+void checkPlaneSectionCases() {
+  using Transform = fcl::Transform3<S>;
+  using Vector = fcl::Vector3<S>;
+  const Transform identity = Transform::Identity();
+  const double tolerance = std::is_same<S, float>::value ? 1e-5 : kExact;
+  // Disk r = 1 at the origin, normal +z. A triangle in the plane y = 0.5
+  // crosses the disk's plane along the chord y = 0.5, |x| <= 3.75, which passes
+  // 0.5 from the centre: they meet, nearest the centre at (0, 0.5, 0). Two of
+  // its vertices project outside the disk, so only the section decides.
+  const fcl::TriangleP<S> crossing(Vector(-5, 0.5, -1), Vector(5, 0.5, -1), Vector(0, 0.5, 3));
+  auto met = fcl_disk::diskShapeDistance(S(1), identity, crossing, identity);
+  EXPECT_EQ(met.distance, S(0));
+  EXPECT_NEAR((met.p_W_disk - met.p_W_shape).norm(), 0.0, tolerance);
+  EXPECT_NEAR(met.p_W_disk.z(), 0.0, tolerance);
+  EXPECT_NEAR(met.p_W_disk.y(), 0.5, tolerance);
+  EXPECT_LE(met.p_W_disk.norm(), 1.0 + tolerance);
+  EXPECT_TRUE(fcl_disk::diskShapeIntersect(S(1), identity, crossing, identity,
+                                           static_cast<fcl_disk::DiskContact<S>*>(nullptr)));
+  // The same in the plane y = 1.5: the chord misses the disk; the rim point
+  // (0, 1, 0) is 0.5 from the triangle's face.
+  const fcl::TriangleP<S> apart(Vector(-5, 1.5, -1), Vector(5, 1.5, -1), Vector(0, 1.5, 3));
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(S(1), identity, apart, identity).distance, 0.5, tolerance);
+  EXPECT_FALSE(fcl_disk::diskShapeIntersect(S(1), identity, apart, identity,
+                                            static_cast<fcl_disk::DiskContact<S>*>(nullptr)));
+  // A box 4 x 2 x 4 centred at (0, 1.7, 0): its section by the disk's plane is
+  // the rectangle |x| <= 2, 0.7 <= y <= 2.7, which meets the disk; no corner
+  // projects into the disk. Centred at (0, 2.2, 0) it is 0.2 from the rim.
+  const fcl::Box<S> box(4, 2, 4);
+  Transform X = identity;
+  X.translation() = Vector(0, 1.7, 0);
+  met = fcl_disk::diskShapeDistance(S(1), identity, box, X);
+  EXPECT_EQ(met.distance, S(0));
+  EXPECT_NEAR(met.p_W_disk.z(), 0.0, tolerance);
+  EXPECT_GE(met.p_W_disk.y(), 0.7 - tolerance);
+  EXPECT_LE(met.p_W_disk.norm(), 1.0 + tolerance);
+  EXPECT_TRUE(fcl_disk::diskShapeIntersect(S(1), identity, box, X,
+                                           static_cast<fcl_disk::DiskContact<S>*>(nullptr)));
+  X.translation() = Vector(0, 2.2, 0);
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(S(1), identity, box, X).distance, 0.2, tolerance);
+}
+
+TEST(DiskShapeCases, PlaneSectionsDecideMeetings) {
+  checkPlaneSectionCases<double>();
+  checkPlaneSectionCases<float>();
+}
+
 /// How far a solver answer on a hull with faces planar only to thickness delta
 /// may lie from the reference's: each takes its own face planes (the solver's
 /// through a face's first vertex, the reference's through its mean), each
