@@ -1,10 +1,9 @@
-// Disk - fcl::Cylinder (a real, solid one): first the disk against the cap
-// facing its centre by the disk-disk solver, certified for the cylinder; else
-// the generic solver with the cylinder's projection (clamp the height, clamp
-// the radial distance) and support (docs/disk_shape_distance.md, section 4);
-// the contact's directions
-// make its depth the exact penetration depth (docs/penetration_depth.md,
-// section 7).
+// Disk - fcl::Cylinder (a real, solid one): the side wall as the capsule pair
+// and the caps as disk-disk pairs where their certificates close
+// (CylinderTraits::closedForm), else the generic solver with the cylinder's
+// projection (clamp the height, clamp the radial distance) and support
+// (docs/disk_shape_distance.md, section 4); the contact's directions make its
+// depth the exact penetration depth (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 #include "../leaf_solvers.h"
