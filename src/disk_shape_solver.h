@@ -637,6 +637,21 @@ struct FlatEnd {
   double radius;
 };
 
+/// The nearest pair of `disk` (orthonormal axes) and the flat end `end`, by
+/// the exact disk-disk solver in the end's frame (solveDiskPairInFrame1, the
+/// end as disk 1): p on the end, q on the disk, both in X's frame; distance 0
+/// with p == q where they meet.
+inline DiskPairAnswer diskPairWithFlatEnd(const DiskInShape& disk, const FlatEnd& end) {
+  const Vec3 end_centre(0.0, 0.0, end.z);
+  Mat3 axes;
+  axes << disk.u, disk.v, disk.n;
+  DiskPairAnswer pair =
+      solveDiskPairInFrame1(PairInFrame1::make(disk.c - end_centre, axes, end.radius, disk.r));
+  pair.p += end_centre;
+  pair.q += end_centre;
+  return pair;
+}
+
 /// A flat feature's candidate: the disk point at s evaluated as an iterate
 /// (kept when nearer than *at) and certified along the usual directions plus
 /// `feature_direction`, the exact separation direction at a rim-against-feature
@@ -676,19 +691,12 @@ struct HasFlatEnds<Target, std::void_t<decltype(std::declval<const Target&>().fl
 template <typename Target>
 void tryFlatEnds(const Target& target, const DiskInShape& disk, double gap_tolerance, double scale,
                  ShapeIterate* at, double* lower) {
-  fcl::Transform3<double> X_D = fcl::Transform3<double>::Identity();
-  X_D.linear().col(0) = disk.u;
-  X_D.linear().col(1) = disk.v;
-  X_D.linear().col(2) = disk.n;
-  X_D.translation() = disk.c;
   for (const FlatEnd& end : target.flatEnds()) {
-    fcl::Transform3<double> X_E = fcl::Transform3<double>::Identity();
-    X_E.translation() = Vec3(0.0, 0.0, end.z);
-    const DiskDistanceResult<double> pair = exactDiskDistance(disk.r, X_D, end.radius, X_E);
+    const DiskPairAnswer pair = diskPairWithFlatEnd(disk, end);
     if (!std::isfinite(pair.distance)) continue;
-    const Vec2 s = disk.nearest(pair.p_W1);
+    const Vec2 s = disk.nearest(pair.q);
     const Vec3 rim_tangent = disk.n.cross(disk.point(s) - disk.c);
-    const Vec3 end_tangent = Vec3::UnitZ().cross(Vec3(pair.p_W2.x(), pair.p_W2.y(), 0.0));
+    const Vec3 end_tangent = Vec3::UnitZ().cross(Vec3(pair.p.x(), pair.p.y(), 0.0));
     offerCandidate(target, disk, s, rim_tangent.cross(end_tangent), gap_tolerance, scale, at, lower);
   }
 }

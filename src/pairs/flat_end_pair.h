@@ -20,15 +20,10 @@ namespace internal {
 template <typename Target>
 LeafToDisk diskAgainstFlatEnd(const DiskInShape& disk, const Target& target, const FlatEnd& end,
                               double scale) {
-  const Vec3 end_centre(0.0, 0.0, end.z);
-  Mat3 axes;
-  axes << disk.u, disk.v, disk.n;
-  const DiskPairAnswer pair =
-      solveDiskPairInFrame1(PairInFrame1::make(disk.c - end_centre, axes, end.radius, disk.r));
-  const Vec3 p_end = end_centre + pair.p, p_disk = end_centre + pair.q;
-  if (pair.distance == 0.0) return certifiedOrBound(0.0, 0.0, p_disk, p_disk, scale);
-  const double lower = certificateAlong(target, disk, 0.0, p_end - p_disk);
-  return certifiedOrBound(lower, pair.distance, p_disk, p_end, scale);
+  const DiskPairAnswer pair = diskPairWithFlatEnd(disk, end);
+  if (pair.distance == 0.0) return certifiedOrBound(0.0, 0.0, pair.q, pair.q, scale);
+  const double lower = certificateAlong(target, disk, 0.0, pair.p - pair.q);
+  return certifiedOrBound(lower, pair.distance, pair.q, pair.p, scale);
 }
 
 }  // namespace internal
