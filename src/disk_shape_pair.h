@@ -43,19 +43,11 @@ DiskShapeDistanceResult<S> nanDiskShapeResult() {
   return result;
 }
 
-/// The disk's pose and radius, and the shape's pose, describe a pair (the shape's
-/// own dimensions are the pair's to check). A shape pose obeys the disk pose rule:
-/// finite, within kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance.
-template <typename S>
-bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
-                             const fcl::Transform3<S>& X_WS) {
-  return isValidDiskRadius(radius) && isValidDiskPose(X_WD) && isValidDiskPose(X_WS);
-}
-
-/// isValidDiskAndShapePose's verdict, and whether both rotations are used as
-/// given (checkDiskPose with kAsGivenRotationTolerance: in double, within
-/// kOrthonormalInDouble; in float never), so that the disk's axes in the
-/// shape's frame are orthonormal to double rounding: one pass over each pose.
+/// Whether the pair is valid (isValidDiskAndShapePose), and whether both
+/// rotations are used as given (checkDiskPose with kAsGivenRotationTolerance:
+/// in double, within kOrthonormalInDouble; in float never), so that the disk's
+/// axes in the shape's frame are orthonormal to double rounding: one pass over
+/// each pose.
 struct DiskAndShapePoseCheck {
   bool valid;
   bool orthonormal;
@@ -68,6 +60,15 @@ DiskAndShapePoseCheck checkDiskAndShapePose(S radius, const fcl::Transform3<S>& 
   const DiskPoseCheck shape = checkDiskPose(X_WS, kAsGivenRotationTolerance<S>);
   return {isValidDiskRadius(radius) && disk.valid && shape.valid,
           disk.orthonormal && shape.orthonormal};
+}
+
+/// The disk's pose and radius, and the shape's pose, describe a pair (the shape's
+/// own dimensions are the pair's to check). A shape pose obeys the disk pose rule:
+/// finite, within kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance.
+template <typename S>
+bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
+                             const fcl::Transform3<S>& X_WS) {
+  return checkDiskAndShapePose(radius, X_WD, X_WS).valid;
 }
 
 template <typename S>
