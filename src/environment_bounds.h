@@ -32,6 +32,7 @@
 #include <optional>
 
 #include "disk_shape_solver.h"
+#include "segment_to_disk.h"
 
 namespace fcl_disk {
 namespace internal {
@@ -61,26 +62,26 @@ struct OrientedBox {
 ///  * dist(o, disk) minus the box's extent along the direction from o's
 ///    nearest disk point to o (separation along that direction).
 /// `R` maps a vector's coordinates in the environment's frame to the box's
-/// (A^T); Identity for an axis-aligned box.
+/// (A^T); Identity for an axis-aligned box. The disk's axes are orthonormal
+/// (orthonormalDiskInShape), so d - (n.d) n is d's in-plane part.
 template <typename Rotation>
 double diskBoxLowerBound(const DiskInShape& disk, const Vec3& o, const Rotation& R,
                          const Vec3& e) {
   const Vec3 d = o - disk.c;
-  const Vec3 d_box = R * d, n_box = R * disk.n, u_box = R * disk.u, v_box = R * disk.v;
+  const Vec3 d_box = R * d, n_box = R * disk.n;
   const double a_o = disk.n.dot(d), x = disk.u.dot(d), y = disk.v.dot(d);
   const double a_min = std::max(std::abs(a_o) - e.dot(n_box.cwiseAbs()), 0.0);
   const double rho = std::sqrt(x * x + y * y);
   const double rim_gap = std::max(rho - disk.r, 0.0);
-  // In-plane towards the axis, and from o's nearest disk point to o.
+  // In-plane towards the axis, and from o's nearest disk point to o, in box
+  // coordinates: d's in-plane part x u + y v is d - a_o n (orthonormal axes),
+  // so neither needs u or v turned into the box.
   double rho_gap = 0.0;
-  Vec3 from_disk_box = d_box;
+  Vec3 from_disk_box = a_o * n_box;
   if (rim_gap > 0.0) {
-    const double inverse_rho = 1.0 / rho;
-    const Vec3 toward_axis_box = (x * inverse_rho) * u_box + (y * inverse_rho) * v_box;
-    rho_gap = std::max(rim_gap - e.dot(toward_axis_box.cwiseAbs()), 0.0);
-    from_disk_box -= disk.r * toward_axis_box;
-  } else {
-    from_disk_box -= x * u_box + y * v_box;
+    const Vec3 in_plane_box = d_box - from_disk_box;
+    rho_gap = std::max(rim_gap - e.dot(in_plane_box.cwiseAbs()) / rho, 0.0);
+    from_disk_box += (rim_gap / rho) * in_plane_box;
   }
   const double plane_and_axis_squared = a_min * a_min + rho_gap * rho_gap;
   const double centre_distance = std::sqrt(a_o * a_o + rim_gap * rim_gap);
@@ -133,6 +134,35 @@ inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_dis
   }
   answer.distance = lower > 0.0 ? lower : 0.0;
   return answer;
+}
+
+/// The leaf's edges as candidates for the nearest pair (the rim or the face
+/// against an edge, which neither a vertex nor a face settles): the nearest
+/// pair of the disk and each segment edges[i] (segmentToDisk) replaces the
+/// upper bound when nearer, and the certificate along the best one's direction
+/// raises `lower` (`min_along(w)`: the least w.y over the leaf). Worth it
+/// (edgesWorthTrying) while the bounds are apart by more than the gap
+/// tolerance and `lower` is below `worth_below`: a traversal prunes a leaf
+/// bounded above its best.
+inline bool edgesWorthTrying(double lower, double upper, double scale, double worth_below) {
+  return upper - lower > kShapeGapTolerance * scale && lower < worth_below;
+}
+template <int kEdges, typename MinAlong>
+void tryEdges(const DiskInShape& disk, const Vec3 (&edges)[kEdges][2], MinAlong&& min_along,
+              double* lower, double* upper, Vec3* upper_disk, Vec3* upper_leaf) {
+  bool nearer = false;
+  for (int i = 0; i < kEdges; ++i) {
+    const SegmentToDisk edge = segmentToDisk(disk, edges[i][0], edges[i][1]);
+    if (edge.distance < *upper) {
+      nearer = true;
+      *upper = edge.distance;
+      *upper_disk = edge.p_disk;
+      *upper_leaf = edge.p_segment;
+    }
+  }
+  if (!nearer || !(*upper > 0.0)) return;
+  const Vec3 w = (*upper_leaf - *upper_disk) / *upper;
+  *lower = std::max(*lower, min_along(w) - disk.support(w));
 }
 
 /// The points where a polytope's edge from vertex i to vertex j meets the
@@ -237,11 +267,15 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
 ///    height over the face. They are exact when the nearest pair is a vertex
 ///    and a disk point, or the face and a disk point; if the best upper bound
 ///    is within kShapeGapTolerance of the scene of the best lower bound, that
-///    is the answer (the solver's own stopping test); else the lower bound,
-///    the larger of (1) and the certificates.
-/// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|.
+///    is the answer (the solver's own stopping test);
+///  * else the same with the edges' candidates (tryEdges): the rim or the
+///    face against an edge;
+///  * else the lower bound, the largest of (1) and the certificates.
+/// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|;
+/// `worth_below`: tryEdges'.
 inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
-                                     const Vec3& p2, double scale) {
+                                 const Vec3& p2, double scale,
+                                 double worth_below = std::numeric_limits<double>::infinity()) {
   const Vec3* vertices[3] = {&p0, &p1, &p2};
   double a[3];
   Vec2 foot[3];
@@ -341,6 +375,12 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
       }
     }
   }
+  if (edgesWorthTrying(lower, upper, scale, worth_below)) {
+    const Vec3 edges[3][2] = {{p0, p1}, {p1, p2}, {p2, p0}};
+    tryEdges(
+        disk, edges, [&](const Vec3& w) { return std::min({w.dot(p0), w.dot(p1), w.dot(p2)}); },
+        &lower, &upper, &upper_disk, &upper_triangle);
+  }
   return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
 }
 
@@ -353,10 +393,13 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
 /// normals of the three faces turned towards c (upper bounds: that corner's
 /// distance; a face's height over the disk when the disk's point deepest
 /// towards it lies over the face), the answer when within kShapeGapTolerance
-/// of the scene; else the largest lower bound, with diskBoxLowerBound's.
-/// `scale`: the solver's, r + |h| + |c - o|.
+/// of the scene; else the same with the candidates of the three edges at the
+/// nearest corner (tryEdges); else the largest lower bound, with
+/// diskBoxLowerBound's.
+/// `scale`: the solver's, r + |h| + |c - o|; `worth_below`: tryEdges'.
 inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const Vec3& h,
-                                   double scale) {
+                                   double scale,
+                                   double worth_below = std::numeric_limits<double>::infinity()) {
   LeafToDisk answer;
   const Vec3 d = o - disk.c;
   const double a_o = disk.n.dot(d), x_o = disk.u.dot(d), y_o = disk.v.dot(d);
@@ -442,6 +485,14 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
       upper_box = deepest;
       upper_box[j] = o[j] + side * h[j];
     }
+  }
+  if (edgesWorthTrying(lower, upper, scale, worth_below)) {
+    const Vec3 from = corner(nearest);
+    const Vec3 edges[3][2] = {
+        {from, corner(nearest ^ 1)}, {from, corner(nearest ^ 2)}, {from, corner(nearest ^ 4)}};
+    tryEdges(
+        disk, edges, [&](const Vec3& w) { return w.dot(o) - h.dot(w.cwiseAbs()); }, &lower,
+        &upper, &upper_disk, &upper_box);
   }
   return certifiedOrBound(lower, upper, upper_disk, upper_box, scale);
 }

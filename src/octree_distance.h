@@ -85,7 +85,8 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
     if (!tree.nodeHasChildren(node)) {
       if (!tree.isNodeOccupied(node)) return;
       const LeafToDisk leaf =
-          alignedBoxToDisk(disk, centre, half, disk.r + half.norm() + (disk.c - centre).norm());
+          alignedBoxToDisk(disk, centre, half, disk.r + half.norm() + (disk.c - centre).norm(),
+                           answer.distance);
       if (leaf.exact) {
         consider(node, leaf.p_disk, leaf.p_leaf, leaf.distance);
         return;

@@ -1,11 +1,14 @@
-// Disk - fcl::Capsule: the capsule is its axis segment inflated by its radius, so
-// the generic solver runs on the segment (projection: clamping along the axis)
-// and the radius is subtracted (docs/disk_shape_distance.md, section 4); the
+// Disk - fcl::Capsule: the capsule is its axis segment inflated by its radius.
+// Apart, the segment's nearest pair (segmentToDisk) less the radius, certified
+// along it; else the generic solver on the segment (projection: clamping along
+// the axis), the radius subtracted (docs/disk_shape_distance.md, section 4); the
 // contact's directions make its depth the exact penetration depth
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
+#include "../environment_bounds.h"
 #include "../leaf_solvers.h"
+#include "../segment_to_disk.h"
 
 #include <vector>
 
@@ -38,6 +41,21 @@ struct CapsuleTraits {
     return 0.5 * double(capsule.lz) + double(capsule.radius);
   }
   static double inflation(const fcl::Capsule<S>& capsule) { return double(capsule.radius); }
+  /// The axis segment's nearest pair (segmentToDisk), moved by the radius
+  /// along w (from the disk's point to the segment's), certified by
+  /// min(w.y over the segment) - radius - h_K(w). Pairs within touching are
+  /// left to the generic solver, which decides overlaps.
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Capsule<S>& capsule,
+                               double scale) {
+    const double half_length = 0.5 * double(capsule.lz), radius = double(capsule.radius);
+    const SegmentToDisk axis = segmentToDisk(disk, Vec3(0.0, 0.0, -half_length),
+                                             Vec3(0.0, 0.0, half_length));
+    const double upper = axis.distance - radius;
+    if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
+    const Vec3 w = (axis.p_segment - axis.p_disk) / axis.distance;
+    const double lower = -half_length * std::abs(w.z()) - radius - disk.support(w);
+    return certifiedOrBound(lower, upper, axis.p_disk, axis.p_segment - radius * w, scale);
+  }
   static SegmentTarget target(const fcl::Capsule<S>& capsule) {
     return SegmentTarget{0.5 * double(capsule.lz)};
   }

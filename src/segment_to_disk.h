@@ -1,0 +1,107 @@
+// Internal: the pair of nearest points of a disk and a segment, by a 1D convex
+// minimisation along the segment. The closed forms of the box, the triangle
+// and the capsule (src/environment_bounds.h, src/pairs/disk_capsule.cpp) take
+// it as their candidate for the rim or the face against an edge, and certify
+// it with their own support function. docs/disk_shape_distance.md, section 5.
+//
+// Frame, units: the disk's DiskInShape frame (centre c, orthonormal in-plane
+// axes u, v, normal n, radius r) and its lengths. The segment is
+// s(t) = a + t (b - a), t in [0, 1]. With z(t) = n.(s - c) and
+// (x(t), y(t)) = (u.(s - c), v.(s - c)), all linear in t, and
+// rho = |(x, y)|,
+//   g(t) = dist(s(t), disk)^2 / 2 = (z^2 + max(rho - r, 0)^2) / 2,
+//   g'(t) = z z' + max(rho - r, 0) (x x' + y y') / rho,
+//   g''(t) = z'^2 + [rho > r] ((1 - r / rho) (x'^2 + y'^2) + (r / rho) rho'^2),
+// rho' = (x x' + y y') / rho. g'' >= 0: g is convex and C^1 (g'' jumps where
+// rho = r), so its minimiser over [0, 1] is an end where g' points outward, or
+// the root of g' inside, found by Newton's method kept in the bracket where g'
+// changes sign (bisection when a step leaves it).
+//
+// Guarantee: none by itself. The answer is a pair of points, one on each set,
+// so its distance is an upper bound; callers certify it with the duality
+// bound dist >= min_X w.y - h_K(w) along w = (s - p) / |s - p| and keep it only
+// when the two meet within kShapeGapTolerance of the scene.
+// Degenerate cases: a zero-length segment is its point (t = 0); a segment
+// meeting the disk gives distance 0 with s = p up to rounding (nothing to
+// certify: callers decide meetings otherwise). Ties: where g is flat (a
+// segment parallel to the disk, over its face) the first t the iteration
+// reaches.
+#pragma once
+
+#include <cmath>
+
+#include "disk_shape_solver.h"
+
+namespace fcl_disk {
+namespace internal {
+
+/// Newton steps in t below this end the iteration: t is in [0, 1], so this
+/// is a few ulps of the segment, below which a step only moves rounding.
+constexpr double kSegmentStepTolerance = 4 * std::numeric_limits<double>::epsilon();
+/// A cap on the iterations: Newton converges in a handful; bisection halves
+/// the bracket each time, so 64 steps reach the tolerance from any bracket.
+constexpr int kMaxSegmentIterations = 64;
+
+struct SegmentToDisk {
+  double t = 0.0;
+  double distance = 0.0;  ///< |p_segment - p_disk|
+  Vec3 p_disk{Vec3::Zero()}, p_segment{Vec3::Zero()};
+};
+
+/// The pair of nearest points of the disk and the segment a b (see above).
+inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const Vec3& b) {
+  const Vec3 from_centre = a - disk.c, step = b - a;
+  const double z0 = disk.n.dot(from_centre), x0 = disk.u.dot(from_centre),
+               y0 = disk.v.dot(from_centre);
+  const double dz = disk.n.dot(step), dx = disk.u.dot(step), dy = disk.v.dot(step);
+  const double planar_squared = dx * dx + dy * dy;
+  // g'(t) and g''(t).
+  const auto slope = [&](double t, double* curvature) {
+    const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
+    const double rho = std::sqrt(x * x + y * y);
+    const double rim_gap = rho - disk.r;
+    double derivative = z * dz;
+    double second = dz * dz;
+    if (rim_gap > 0.0) {
+      const double radial = (x * dx + y * dy) / rho;  // rho'
+      derivative += rim_gap * radial;
+      const double ratio = disk.r / rho;
+      second += (1.0 - ratio) * planar_squared + ratio * radial * radial;
+    }
+    if (curvature) *curvature = second;
+    return derivative;
+  };
+
+  double t;
+  const double slope_low = slope(0.0, nullptr);
+  const double slope_high = slope(1.0, nullptr);
+  if (!(slope_low < 0.0)) {
+    t = 0.0;
+  } else if (!(slope_high > 0.0)) {
+    t = 1.0;
+  } else {
+    double low = 0.0, high = 1.0;
+    t = slope_low / (slope_low - slope_high);  // g' interpolated
+    for (int iteration = 0; iteration < kMaxSegmentIterations; ++iteration) {
+      double curvature;
+      const double derivative = slope(t, &curvature);
+      if (derivative == 0.0) break;
+      (derivative < 0.0 ? low : high) = t;
+      double next = t - derivative / curvature;
+      if (!(next > low && next < high)) next = 0.5 * (low + high);
+      const bool converged = std::abs(next - t) <= kSegmentStepTolerance;
+      t = next;
+      if (converged) break;
+    }
+  }
+  SegmentToDisk answer;
+  answer.t = t;
+  answer.p_segment = a + t * step;
+  answer.p_disk = disk.point(
+      disk.clampedToRim(Vec2(x0 + t * dx, y0 + t * dy)));
+  answer.distance = (answer.p_segment - answer.p_disk).norm();
+  return answer;
+}
+
+}  // namespace internal
+}  // namespace fcl_disk
