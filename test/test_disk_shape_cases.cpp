@@ -81,6 +81,27 @@ TEST(DiskShapeCases, HandDerivedDistances) {
   // 0.6 - 0.1 = 0.5.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Capsule<double>(0.1, 2.0),
                                           at({0, 0, 0.6}, Vector3d::UnitX())).distance, 0.5, kExact);
+  // Capsule rho = 0.1, lz = 2, axis along y through (1.5, 0, 0.5), beside the
+  // rim: rim point (1, 0, 0), axis point (1.5, 0, 0.5): sqrt(0.5) - 0.1.
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Capsule<double>(0.1, 2.0),
+                                          at({1.5, 0, 0.5}, Vector3d::UnitY())).distance,
+              std::sqrt(0.5) - 0.1, kExact);
+  // Triangle edges against the rim, neither a vertex nor the face nearest:
+  // the edge x = 1.5, z = 0.5 over the rim point (1, 0, 0): sqrt(0.5) (the
+  // face's normal is normal to that direction, the vertices 0.946 away).
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity,
+                                          fcl::TriangleP<double>(Vector3d(1.5, -1, 0.5), Vector3d(1.5, 1, 0.5),
+                                                                 Vector3d(3, 0, 2)),
+                                          kIdentity).distance,
+              std::sqrt(0.5), kExact);
+  // In the plane y = 0, the edge (0.5, 0, 0.3)-(2, 0, -0.5) passes the rim point
+  // (1, 0, 0) at 0.05 / 1.7 = 1/34 (the disk's section by y = 0 is x in [-1, 1],
+  // and the edge crosses z = 0 at x = 1.0625, beyond the rim).
+  EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity,
+                                          fcl::TriangleP<double>(Vector3d(0.5, 0, 0.3), Vector3d(2, 0, -0.5),
+                                                                 Vector3d(1.25, 0, 1)),
+                                          kIdentity).distance,
+              1.0 / 34.0, kExact);
   // Cylinder r = 0.5, lz = 1 coaxial above at centre height 2: bottom cap at z = 1.5.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Cylinder<double>(0.5, 1.0),
                                           at({0, 0, 2})).distance, 1.5, kExact);
