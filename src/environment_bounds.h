@@ -268,8 +268,8 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
 ///    and a disk point, or the face and a disk point; if the best upper bound
 ///    is within kShapeGapTolerance of the scene of the best lower bound, that
 ///    is the answer (the solver's own stopping test);
-///  * else the same with the edges' candidates (tryEdges): the rim or the
-///    face against an edge;
+///  * else the same with the candidates of the two edges at that nearest
+///    vertex (tryEdges): the rim or the face against an edge;
 ///  * else the lower bound, the largest of (1) and the certificates.
 /// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|;
 /// `worth_below`: tryEdges'.
@@ -376,7 +376,8 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
     }
   }
   if (edgesWorthTrying(lower, upper, scale, worth_below)) {
-    const Vec3 edges[3][2] = {{p0, p1}, {p1, p2}, {p2, p0}};
+    const Vec3& near = *vertices[k];
+    const Vec3 edges[2][2] = {{near, *vertices[(k + 1) % 3]}, {near, *vertices[(k + 2) % 3]}};
     tryEdges(
         disk, edges, [&](const Vec3& w) { return std::min({w.dot(p0), w.dot(p1), w.dot(p2)}); },
         &lower, &upper, &upper_disk, &upper_triangle);
