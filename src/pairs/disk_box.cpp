@@ -1,5 +1,5 @@
-// Disk - fcl::Box: the generic solver with the box's projection (clamping in the
-// box frame) and support (a vertex). docs/disk_shape_distance.md, section 4.
+// Disk - fcl::Box: closed forms where they certify, else the generic solver with
+// the box's projection (clamping in the box frame) and support (a vertex). docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 #include "../leaf_solvers.h"
@@ -61,8 +61,8 @@ struct BoxTraits {
     return 0.5 * box.side.template cast<double>().norm();
   }
   static double inflation(const fcl::Box<S>&) { return 0.0; }
-  /// A corner or a face nearest a disk point, certified without iterating
-  /// (alignedBoxToDisk, src/environment_bounds.h).
+  /// A corner, an edge or a face nearest a disk point, certified without the
+  /// generic solver (alignedBoxToDisk, src/environment_bounds.h).
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Box<S>& box, double scale) {
     return alignedBoxToDisk(disk, Vec3::Zero(), 0.5 * box.side.template cast<double>(), scale);
   }

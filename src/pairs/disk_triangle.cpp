@@ -1,5 +1,6 @@
-// Disk - fcl::TriangleP (the leaf of meshes): the generic solver with the
-// triangle's projection (its face, else its nearest edge) and support (a vertex).
+// Disk - fcl::TriangleP (the leaf of meshes): closed forms where they certify,
+// else the generic solver with the triangle's projection (its face, else its
+// nearest edge) and support (a vertex).
 // docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
@@ -53,8 +54,9 @@ struct TriangleTraits {
                                triangle.c.template cast<double>().squaredNorm()}));
   }
   static double inflation(const fcl::TriangleP<S>&) { return 0.0; }
-  /// A vertex or the face nearest a disk point, or a triangle over the disk,
-  /// certified without iterating (triangleToDisk, src/environment_bounds.h).
+  /// A vertex, an edge or the face nearest a disk point, or a triangle over
+  /// the disk, certified without the generic solver (triangleToDisk,
+  /// src/environment_bounds.h).
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::TriangleP<S>& triangle,
                                double scale) {
     return triangleToDisk(disk, triangle.a.template cast<double>(),
