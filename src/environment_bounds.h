@@ -404,21 +404,24 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
   LeafToDisk answer;
   const Vec3 d = o - disk.c;
   const double a_o = disk.n.dot(d), x_o = disk.u.dot(d), y_o = disk.v.dot(d);
-  // Corner k = o + (s_0 h_0, s_1 h_1, s_2 h_2), s_i = bit i of k ? + : -.
+  // Corner k = o + (s_0 h_0, s_1 h_1, s_2 h_2), s_i = bit i of k ? + : -. Its
+  // height a and in-plane x, y: the centre's plus the steps along e_0, e_1
+  // (four sums, shared by both signs of s_2) plus the step along e_2.
   const Vec3 a_step = disk.n.cwiseProduct(h), x_step = disk.u.cwiseProduct(h),
              y_step = disk.v.cwiseProduct(h);
   double a[8], x[8], y[8];
+  for (int k = 0; k < 4; ++k) {
+    const double s0 = (k & 1) ? 1.0 : -1.0, s1 = (k & 2) ? 1.0 : -1.0;
+    const double a01 = s0 * a_step[0] + s1 * a_step[1], x01 = s0 * x_step[0] + s1 * x_step[1],
+                 y01 = s0 * y_step[0] + s1 * y_step[1];
+    a[k] = (a_o - a_step[2]) + a01, a[k + 4] = (a_o + a_step[2]) + a01;
+    x[k] = (x_o - x_step[2]) + x01, x[k + 4] = (x_o + x_step[2]) + x01;
+    y[k] = (y_o - y_step[2]) + y01, y[k + 4] = (y_o + y_step[2]) + y01;
+  }
   bool inside = true;
   int lowest = 0, highest = 0, nearest = 0;
   double nearest_squared = std::numeric_limits<double>::infinity();
   for (int k = 0; k < 8; ++k) {
-    a[k] = a_o, x[k] = x_o, y[k] = y_o;
-    for (int i = 0; i < 3; ++i) {
-      const double side = (k >> i) & 1 ? 1.0 : -1.0;
-      a[k] += side * a_step[i];
-      x[k] += side * x_step[i];
-      y[k] += side * y_step[i];
-    }
     const double rho = std::sqrt(x[k] * x[k] + y[k] * y[k]);
     inside &= rho <= disk.r;
     const double rim_gap = std::max(rho - disk.r, 0.0);
