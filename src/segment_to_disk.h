@@ -2,7 +2,8 @@
 // minimisation along the segment. The closed forms of the box, the triangle
 // and the capsule (src/environment_bounds.h, src/pairs/disk_capsule.cpp) take
 // it as their candidate for the rim or the face against an edge, and certify
-// it with their own support function. docs/disk_shape_distance.md, section 5.
+// it with their own support function. docs/disk_shape_distance.md, section 4,
+// "The segment solver".
 //
 // Frame, units: the disk's DiskInShape frame (centre c, orthonormal in-plane
 // axes u, v, normal n, radius r) and its lengths. The segment is
