@@ -136,19 +136,30 @@ inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_dis
   return answer;
 }
 
+/// Raises `lower` to the certificate along the direction of a pair of points
+/// `distance` apart, w = (p_leaf - p_disk) / distance: least_along(w) - h_K(w),
+/// `least_along(w)` the least w.y over the leaf.
+template <typename LeastAlong>
+void certifyAlongPair(const DiskInShape& disk, LeastAlong&& least_along, double distance,
+                      const Vec3& p_disk, const Vec3& p_leaf, double* lower) {
+  if (!(distance > 0.0)) return;
+  const Vec3 w = (p_leaf - p_disk) / distance;
+  *lower = std::max(*lower, least_along(w) - disk.support(w));
+}
+
 /// The leaf's edges as candidates for the nearest pair (the rim or the face
 /// against an edge, which neither a vertex nor a face settles): the nearest
 /// pair of the disk and each segment edges[i] (segmentToDisk) replaces the
 /// upper bound when nearer, and the certificate along the best one's direction
-/// raises `lower` (`min_along(w)`: the least w.y over the leaf). Worth it
+/// raises `lower` (certifyAlongPair). Worth it
 /// (edgesWorthTrying) while the bounds are apart by more than the gap
 /// tolerance and `lower` is below `worth_below`: a traversal prunes a leaf
 /// bounded above its best.
 inline bool edgesWorthTrying(double lower, double upper, double scale, double worth_below) {
   return upper - lower > kShapeGapTolerance * scale && lower < worth_below;
 }
-template <int kEdges, typename MinAlong>
-void tryEdges(const DiskInShape& disk, const Vec3 (&edges)[kEdges][2], MinAlong&& min_along,
+template <int kEdges, typename LeastAlong>
+void tryEdges(const DiskInShape& disk, const Vec3 (&edges)[kEdges][2], LeastAlong&& least_along,
               double* lower, double* upper, Vec3* upper_disk, Vec3* upper_leaf) {
   bool nearer = false;
   for (int i = 0; i < kEdges; ++i) {
@@ -160,9 +171,7 @@ void tryEdges(const DiskInShape& disk, const Vec3 (&edges)[kEdges][2], MinAlong&
       *upper_leaf = edge.p_segment;
     }
   }
-  if (!nearer || !(*upper > 0.0)) return;
-  const Vec3 w = (*upper_leaf - *upper_disk) / *upper;
-  *lower = std::max(*lower, min_along(w) - disk.support(w));
+  if (nearer) certifyAlongPair(disk, least_along, *upper, *upper_disk, *upper_leaf, lower);
 }
 
 /// The points where a polytope's edge from vertex i to vertex j meets the
@@ -343,10 +352,10 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   double upper = std::sqrt(nearest_squared[k]);
   Vec3 upper_disk = disk.point(disk.clampedToRim(foot[k]));
   Vec3 upper_triangle = *vertices[k];
-  if (upper > 0.0) {
-    const Vec3 w = (upper_triangle - upper_disk) / upper;
-    lower = std::max(lower, std::min({w.dot(p0), w.dot(p1), w.dot(p2)}) - disk.support(w));
-  }
+  const auto least_along = [&](const Vec3& w) {
+    return std::min({w.dot(p0), w.dot(p1), w.dot(p2)});
+  };
+  certifyAlongPair(disk, least_along, upper, upper_disk, upper_triangle, &lower);
   // The face: m its unit normal turned towards c. The bound takes the largest
   // m.p_i, so it holds when rounding leaves m off the normal of a sliver; the
   // upper bound measures to a convex combination of the vertices, a point of
@@ -378,9 +387,7 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   if (edgesWorthTrying(lower, upper, scale, worth_below)) {
     const Vec3& near = *vertices[k];
     const Vec3 edges[2][2] = {{near, *vertices[(k + 1) % 3]}, {near, *vertices[(k + 2) % 3]}};
-    tryEdges(
-        disk, edges, [&](const Vec3& w) { return std::min({w.dot(p0), w.dot(p1), w.dot(p2)}); },
-        &lower, &upper, &upper_disk, &upper_triangle);
+    tryEdges(disk, edges, least_along, &lower, &upper, &upper_disk, &upper_triangle);
   }
   return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
 }
@@ -470,10 +477,8 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
   double upper = std::sqrt(nearest_squared);
   Vec3 upper_box = corner(nearest);
   Vec3 upper_disk = disk.point(disk.clampedToRim(Vec2(x[nearest], y[nearest])));
-  if (upper > 0.0) {
-    const Vec3 w = (upper_box - upper_disk) / upper;
-    lower = std::max(lower, w.dot(o) - h.dot(w.cwiseAbs()) - disk.support(w));
-  }
+  const auto least_along = [&](const Vec3& w) { return w.dot(o) - h.dot(w.cwiseAbs()); };
+  certifyAlongPair(disk, least_along, upper, upper_disk, upper_box, &lower);
   // The faces turned towards c: normal m = sign(c_j - o_j) e_j.
   for (int j = 0; j < 3; ++j) {
     const double side = disk.c[j] < o[j] ? -1.0 : 1.0;
@@ -494,9 +499,7 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
     const Vec3 from = corner(nearest);
     const Vec3 edges[3][2] = {
         {from, corner(nearest ^ 1)}, {from, corner(nearest ^ 2)}, {from, corner(nearest ^ 4)}};
-    tryEdges(
-        disk, edges, [&](const Vec3& w) { return w.dot(o) - h.dot(w.cwiseAbs()); }, &lower,
-        &upper, &upper_disk, &upper_box);
+    tryEdges(disk, edges, least_along, &lower, &upper, &upper_disk, &upper_box);
   }
   return certifiedOrBound(lower, upper, upper_disk, upper_box, scale);
 }

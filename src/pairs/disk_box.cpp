@@ -1,5 +1,6 @@
 // Disk - fcl::Box: closed forms where they certify, else the generic solver with
-// the box's projection (clamping in the box frame) and support (a vertex). docs/disk_shape_distance.md, section 4.
+// the box's projection (clamping in the box frame) and support (a vertex).
+// docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 #include "../leaf_solvers.h"

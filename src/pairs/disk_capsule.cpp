@@ -42,9 +42,10 @@ struct CapsuleTraits {
   }
   static double inflation(const fcl::Capsule<S>& capsule) { return double(capsule.radius); }
   /// The axis segment's nearest pair (segmentToDisk), moved by the radius
-  /// along w (from the disk's point to the segment's), certified by
-  /// min(w.y over the segment) - radius - h_K(w). Pairs within touching are
-  /// left to the generic solver, which decides overlaps.
+  /// along w (from the disk's point to the segment's), certified along the
+  /// unit w: min over the capsule of w.y - h_K(w), its core's support less the
+  /// radius (certificateAlong without renormalising w). Pairs within touching
+  /// are left to the generic solver, which decides overlaps.
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Capsule<S>& capsule,
                                double scale) {
     const double half_length = 0.5 * double(capsule.lz), radius = double(capsule.radius);
@@ -53,7 +54,7 @@ struct CapsuleTraits {
     const double upper = axis.distance - radius;
     if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
     const Vec3 w = (axis.p_segment - axis.p_disk) / axis.distance;
-    const double lower = -half_length * std::abs(w.z()) - radius - disk.support(w);
+    const double lower = w.dot(target(capsule).support(-w)) - radius - disk.support(w);
     return certifiedOrBound(lower, upper, axis.p_disk, axis.p_segment - radius * w, scale);
   }
   static SegmentTarget target(const fcl::Capsule<S>& capsule) {
