@@ -1,7 +1,9 @@
 // DiskNarrowPhase: the narrowphase solver that FCL's mesh and octree collision
 // traversals call at their leaves, answering with fcl_disk's exact solvers when
-// the shape is a Disk. (Distance against meshes and octrees is fcl_disk's own
-// traversal: src/mesh_distance.h, src/octree_distance.h.)
+// the shape is a Disk. The hook runs those traversals only for requests with
+// enable_cost, so that cost sources are FCL's; distance, and collision without
+// cost, are fcl_disk's own traversals (src/mesh_distance.h,
+// src/octree_distance.h, src/mesh_collision.h, src/octree_collision.h).
 //
 // FCL's traversal templates (BVHShapeCollider, OcTreeShapeCollide, ...;
 // fcl/narrowphase/detail/) take the narrowphase solver as a template parameter
@@ -17,7 +19,7 @@
 // Conventions, as FCL's GJK solvers: points in the world frame; a collision
 // normal is a unit vector from the first shape towards the second (FCL negates
 // it where the mesh or octree is o1). Stateless, so one instance serves every
-// thread (DiskInFrameNarrowPhase below holds its query's disk: one per query).
+// thread.
 #pragma once
 
 #include <algorithm>
@@ -29,7 +31,6 @@
 
 #include "fcl_disk/disk.h"
 #include "fcl_disk/disk_shape_distance.h"
-#include "leaf_solvers.h"
 
 namespace fcl_disk {
 namespace internal {
@@ -90,66 +91,6 @@ class DiskNarrowPhase {
     }
     return true;
   }
-};
-
-/// DiskNarrowPhase for the traversals fcl_disk runs in an environment's frame
-/// E (a mesh's M, an octree's O) with E at the identity: the leaves' collision
-/// tests use the disk posed in E in double (`disk_in_frame`, diskInShape of the
-/// world poses), the very disk the distance traversals use, not the rounded
-/// Transform3<S> the traversal passes. So in float a pair the distance calls
-/// touching (0) is a collision too. One instance per query.
-template <typename S_>
-class DiskInFrameNarrowPhase : public DiskNarrowPhase<S_> {
- public:
-  using S = S_;
-  using Vector3 = fcl::Vector3<S>;
-  using Transform3 = fcl::Transform3<S>;
-
-  explicit DiskInFrameNarrowPhase(const DiskInShape& disk_in_frame)
-      : disk_in_frame_(disk_in_frame) {}
-
-  /// The triangle a, b, c given in E.
-  bool shapeTriangleIntersect(const Disk<S>&, const Transform3&, const Vector3& a,
-                              const Vector3& b, const Vector3& c, Vector3* contact_point,
-                              S* penetration_depth, Vector3* normal) const {
-    FrameContact contact;
-    if (!intersectDiskTriangle(disk_in_frame_, a.template cast<double>(),
-                               b.template cast<double>(), c.template cast<double>(),
-                               contact_point ? &contact : nullptr)) {
-      return false;
-    }
-    if (contact_point) {
-      *contact_point = contact.pos.template cast<S>();
-      if (penetration_depth) *penetration_depth = S(std::max(contact.separation.depth, 0.0));
-      if (normal) *normal = contact.separation.direction.template cast<S>();
-    }
-    return true;
-  }
-
-  /// An octree cell: FCL's box at pose X_EB (a translation in E).
-  bool shapeIntersect(const fcl::Box<S>& box, const Transform3& X_EB, const Disk<S>&,
-                      const Transform3&, std::vector<fcl::ContactPoint<S>>* contacts) const {
-    const Mat3 R_EB = X_EB.linear().template cast<double>();
-    const Vec3 offset = disk_in_frame_.c - X_EB.translation().template cast<double>();
-    const DiskInShape disk_in_box{R_EB.transpose() * offset, R_EB.transpose() * disk_in_frame_.u,
-                                  R_EB.transpose() * disk_in_frame_.v,
-                                  R_EB.transpose() * disk_in_frame_.n, disk_in_frame_.r};
-    FrameContact contact;
-    if (!intersectDiskBox(disk_in_box, 0.5 * box.side.template cast<double>(),
-                          contacts ? &contact : nullptr)) {
-      return false;
-    }
-    if (contacts) {
-      const Vec3 pos = X_EB.translation().template cast<double>() + R_EB * contact.pos;
-      const Vec3 normal = R_EB * contact.separation.direction;
-      contacts->emplace_back((-normal).template cast<S>(), pos.template cast<S>(),
-                             S(std::max(contact.separation.depth, 0.0)));
-    }
-    return true;
-  }
-
- private:
-  DiskInShape disk_in_frame_;
 };
 
 }  // namespace internal

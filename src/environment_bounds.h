@@ -99,6 +99,39 @@ inline double diskAlignedBoxLowerBound(const DiskInShape& disk, const Vec3& o, c
   return diskBoxLowerBound(disk, o, Mat3::Identity(), e);
 }
 
+/// The disk's half-extents along the frame's axes: r |(u_k, v_k)| (from the
+/// in-plane axes: r sqrt(1 - n_k^2) loses every digit for n_k near 1).
+inline Vec3 diskAxisExtents(const DiskInShape& disk) {
+  return disk.r * Vec3(std::sqrt(disk.u.x() * disk.u.x() + disk.v.x() * disk.v.x()),
+                       std::sqrt(disk.u.y() * disk.u.y() + disk.v.y() * disk.v.y()),
+                       std::sqrt(disk.u.z() * disk.u.z() + disk.v.z() * disk.v.z()));
+}
+
+/// A lower bound on dist(box, disk), unpadded, cheaper and looser than
+/// diskBoxLowerBound, for the collision traversals, which only ask whether a
+/// volume is farther than a small tolerance: the larger of the gaps between
+/// the box's and the disk's intervals along the box's axes (the disk's
+/// half-extent along a unit a is r |(u.a, v.a)|) and along the disk's normal
+/// (|n.(o - c)| less the box's half-extent along n). Separating-axis tests on
+/// those four axes. The axis-aligned box with the disk's extents along the
+/// frame's axes precomputed (diskAxisExtents), and an oriented box (`R` = A^T
+/// as diskBoxLowerBound's).
+inline double diskAlignedBoxSeparation(const DiskInShape& disk, const Vec3& disk_extents,
+                                       const Vec3& o, const Vec3& e) {
+  const Vec3 d = o - disk.c;
+  const double axis_gap = (d.cwiseAbs() - e - disk_extents).maxCoeff();
+  return std::max(axis_gap, std::abs(disk.n.dot(d)) - e.dot(disk.n.cwiseAbs()));
+}
+template <typename Rotation>
+double diskBoxSeparation(const DiskInShape& disk, const Vec3& o, const Rotation& R, const Vec3& e) {
+  const Vec3 d = o - disk.c;
+  const Vec3 d_box = R * d, u_box = R * disk.u, v_box = R * disk.v, n_box = R * disk.n;
+  const Vec3 disk_extents =
+      disk.r * (u_box.cwiseAbs2() + v_box.cwiseAbs2()).cwiseSqrt();
+  const double axis_gap = (d_box.cwiseAbs() - e - disk_extents).maxCoeff();
+  return std::max(axis_gap, std::abs(disk.n.dot(d)) - e.dot(n_box.cwiseAbs()));
+}
+
 /// The largest magnitude a box bound is computed from, but for the disk's
 /// share r + |c| (diskBoundMagnitude).
 inline double boxBoundMagnitude(const Vec3& o, const Vec3& e) {

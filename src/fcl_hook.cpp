@@ -46,6 +46,8 @@
 #include "disk_narrowphase.h"
 #include "disk_penetration_candidates.h"
 #include "mesh_distance.h"
+#include "mesh_collision.h"
+#include "octree_collision.h"
 #include "octree_distance.h"
 
 namespace fcl_disk {
@@ -334,17 +336,6 @@ std::size_t answerDiskShapeCollision(const Disk<S>& disk, const Transform3<S>& X
 template <typename S>
 const internal::DiskNarrowPhase<S> kDiskNarrowPhase{};
 
-/// X_AB from X_WA and X_WB, with the translation taken as a difference first:
-/// R_WA^T (t_WB - t_WA). (X_WA^-1 X_WB adds two world-sized terms instead,
-/// losing an ulp of the distance from the origin: 1e-11 of a unit scene at 1e5.)
-template <typename S>
-Transform3<S> relativePose(const Transform3<S>& X_WA, const Transform3<S>& X_WB) {
-  Transform3<S> X_AB = Transform3<S>::Identity();
-  X_AB.linear() = X_WA.linear().transpose() * X_WB.linear();
-  X_AB.translation() = X_WA.linear().transpose() * (X_WB.translation() - X_WA.translation());
-  return X_AB;
-}
-
 template <int NodeType, typename S>
 struct DiskEnvironment {
   static constexpr bool kAnswered = false;  // not answered by fcl_disk
@@ -387,24 +378,16 @@ struct DiskMeshTraversal {
     return result.min_distance;
   }
 
-  /// Collision: FCL's oriented traversals (OBB, RSS, kIOS, OBBRSS) as they
-  /// are. For AABB and KDOP meshes FCL copies the mesh into the world frame and
-  /// rebuilds its hierarchy on every query; the same traversal runs here in the
-  /// mesh's frame instead, contacts mapped to the world at the end. With
+  /// Collision: fcl_disk's depth-first traversal in the mesh's frame
+  /// (src/mesh_collision.h), contacts mapped to the world at the end. With
   /// enable_cost FCL's path is kept, so that cost sources are FCL's
   /// world-frame boxes.
-  static constexpr bool kCollidesOnWorldCopy =
-      std::is_same<BV, fcl::AABB<S>>::value || std::is_same<BV, fcl::KDOP<S, 16>>::value ||
-      std::is_same<BV, fcl::KDOP<S, 18>>::value || std::is_same<BV, fcl::KDOP<S, 24>>::value;
-
   static std::size_t collide(const CollisionGeometry<S>* mesh, const Transform3<S>& X_WM,
                              const Disk<S>& disk, const Transform3<S>& X_WD,
                              const fcl::CollisionRequest<S>& request,
                              fcl::CollisionResult<S>& result) {
     if (!isTriangleModel(mesh)) return result.numContacts();  // as distance()
-    if constexpr (kCollidesOnWorldCopy) {
-      if (!request.enable_cost) return collideInMeshFrame(mesh, X_WM, disk, X_WD, request, result);
-    }
+    if (!request.enable_cost) return collideInMeshFrame(mesh, X_WM, disk, X_WD, request, result);
     return fcl::detail::BVHShapeCollider<BV, Disk<S>, Narrow>::collide(
         mesh, X_WM, &disk, X_WD, &kDiskNarrowPhase<S>, request, result);
   }
@@ -420,21 +403,8 @@ struct DiskMeshTraversal {
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_mesh_frame;
-    const internal::DiskInFrameNarrowPhase<S> narrow(internal::orthonormalDiskInShape(disk.radius, X_WD, X_WM));
-    fcl::detail::MeshShapeCollisionTraversalNode<BV, Disk<S>, internal::DiskInFrameNarrowPhase<S>> node;
-    const Transform3<S> X_MD = relativePose(X_WM, X_WD);
-    node.model1 = &model;
-    node.tf1.setIdentity();
-    node.model2 = &disk;
-    node.tf2 = X_MD;  // the volumes' test; the leaves use `narrow`'s disk
-    node.nsolver = &narrow;
-    fcl::computeBV(disk, X_MD, node.model2_bv);
-    node.vertices = model.vertices;
-    node.tri_indices = model.tri_indices;
-    node.request = room_left;
-    node.result = &in_mesh_frame;
-    node.cost_density = model.cost_density * disk.cost_density;
-    fcl::detail::collide(&node);
+    internal::diskMeshCollide(internal::orthonormalDiskInShape(disk.radius, X_WD, X_WM), model,
+                              disk, room_left, in_mesh_frame);
     for (std::size_t i = 0; i < in_mesh_frame.numContacts(); ++i) {
       fcl::Contact<S> contact = in_mesh_frame.getContact(i);
       if (request.enable_contact) {
@@ -461,13 +431,12 @@ FCL_DISK_MESH(BV_KDOP18, fcl::KDOP<S, 18>)
 FCL_DISK_MESH(BV_KDOP24, fcl::KDOP<S, 24>)
 #undef FCL_DISK_MESH
 
-/// An octree: FCL's octree traversal, run in the octree's frame O (the disk
-/// posed there by relativePose, the tree at the identity; FCL's traversal in
+/// An octree: fcl_disk's traversals in the octree's frame O (FCL's traversal in
 /// the world frame poses every cell in world coordinates, which costs the
 /// rounding of their distance from the origin), the answer mapped to the
 /// world. As FCL's shape-octree functions, the octree is o1 of the answer
-/// whatever the argument order. With enable_cost FCL's world-frame path is
-/// kept, so that cost sources are FCL's world boxes.
+/// whatever the argument order. With enable_cost FCL's world-frame collision
+/// traversal is kept, so that cost sources are FCL's world boxes.
 template <typename S>
 struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
   static constexpr bool kAnswered = true;
@@ -508,10 +477,9 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
     fcl::CollisionRequest<S> room_left = request;
     room_left.num_max_contacts = request.num_max_contacts - result.numContacts();
     fcl::CollisionResult<S> in_octree_frame;
-    const internal::DiskInFrameNarrowPhase<S> narrow(internal::orthonormalDiskInShape(disk.radius, X_WD, X_WO));
-    fcl::detail::OcTreeShapeCollide<Disk<S>, internal::DiskInFrameNarrowPhase<S>>(
-        octree, Transform3<S>::Identity(), &disk, relativePose(X_WO, X_WD), &narrow, room_left,
-        in_octree_frame);
+    internal::diskOcTreeCollide(internal::orthonormalDiskInShape(disk.radius, X_WD, X_WO),
+                                *static_cast<const fcl::OcTree<S>*>(octree), disk, room_left,
+                                in_octree_frame);
     for (std::size_t i = 0; i < in_octree_frame.numContacts(); ++i) {
       fcl::Contact<S> contact = in_octree_frame.getContact(i);
       if (request.enable_contact) {

@@ -1,0 +1,185 @@
+// Internal: fcl::collide between a disk and a triangle mesh (fcl::BVHModel of
+// any bounding volume FCL has) without cost sources, in the mesh's frame M.
+// docs/meshes_and_octrees.md, "Collision traversal".
+//
+// FCL's traversal (collisionRecurse over a MeshShapeCollisionTraversalNode)
+// with its rules kept and its volume test replaced: the model's hierarchy
+// depth first, the first child before the second; a leaf tested only if the
+// mesh and the disk are both occupied; a contact per triangle the disk meets
+// (the certified disk-triangle intersection, src/leaf_solvers.h), while there
+// is room; stop once the request is satisfied. FCL tests the disk's bounding
+// volume against each node's (for an OBB, 15 axes after a product of the two
+// rotations); here a lower bound on the distance from the disk to the node's
+// volume as a box (diskBoxSeparation / diskAlignedBoxSeparation) prunes it,
+// when it exceeds the intersection test's touching tolerance for any triangle
+// inside (kShapeTouchingTolerance of that triangle's scene, bounded by the
+// node's) plus the bounds' rounding pad, so no triangle that
+// intersectDiskTriangle would call intersecting is ever skipped.
+//
+// Frame, units: M and its lengths; the disk as a DiskInShape in M. Contacts are
+// FCL's: o1 the mesh, o2 the disk, b1 the triangle's index, b2 NONE; with
+// enable_contact, pos in M, normal and depth as FCL's shape-triangle contacts
+// (the normal negated, depth >= 0). Thread safety: nothing is shared.
+#pragma once
+
+#include <fcl/narrowphase/collision_request.h>
+#include <fcl/narrowphase/collision_result.h>
+
+#include <algorithm>
+#include <limits>
+
+#include "environment_bounds.h"
+#include "leaf_solvers.h"
+#include "mesh_distance.h"  // isLeaf, primitiveId
+
+namespace fcl_disk {
+namespace internal {
+
+/// A node's volume as a box for diskBoxSeparation: the box itself (AABB, OBB,
+/// and the OBB of OBBRSS and kIOS), a k-DOP's first three slab pairs (FCL's
+/// coordinate axes), an RSS's rectangle grown by its radius on every side.
+/// Returns the separation and sets the volume's magnitude (boxBoundMagnitude)
+/// and the 1-norm bound |x|_1 <= *reach for its points.
+struct BoxSeparation {
+  double separation;
+  double magnitude;
+  double reach;
+};
+inline BoxSeparation alignedSeparation(const DiskInShape& disk, const Vec3& disk_extents,
+                                       const Vec3& o, const Vec3& e) {
+  return {diskAlignedBoxSeparation(disk, disk_extents, o, e), boxBoundMagnitude(o, e),
+          o.cwiseAbs().sum() + e.sum()};
+}
+inline BoxSeparation orientedSeparation(const DiskInShape& disk, const Vec3& o, const Mat3& axes,
+                                        const Vec3& e) {
+  // The box's points lie within |e|_1 of o along each of the frame's axes.
+  return {diskBoxSeparation(disk, o, axes.transpose(), e), boxBoundMagnitude(o, e),
+          o.cwiseAbs().sum() + 3.0 * e.sum()};
+}
+template <typename S>
+BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
+                               const fcl::AABB<S>& box) {
+  return alignedSeparation(disk, disk_extents, ((box.min_ + box.max_) / 2).template cast<double>(),
+                           ((box.max_ - box.min_) / 2).template cast<double>());
+}
+template <typename S, std::size_t N>
+BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
+                               const fcl::KDOP<S, N>& kdop) {
+  const Vec3 low(kdop.dist(0), kdop.dist(1), kdop.dist(2));
+  const Vec3 high(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2));
+  return alignedSeparation(disk, disk_extents, (low + high) / 2, (high - low) / 2);
+}
+template <typename S>
+BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3&, const fcl::OBB<S>& obb) {
+  return orientedSeparation(disk, obb.To.template cast<double>(), obb.axis.template cast<double>(),
+                            obb.extent.template cast<double>());
+}
+template <typename S>
+BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3&, const fcl::RSS<S>& rss) {
+  const Mat3 axes = rss.axis.template cast<double>();
+  const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]);
+  const double radius = double(rss.r);
+  return orientedSeparation(
+      disk, rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1), axes,
+      Vec3(half0 + radius, half1 + radius, radius));
+}
+template <typename S>
+BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
+                               const fcl::OBBRSS<S>& obbrss) {
+  return volumeSeparation(disk, disk_extents, obbrss.obb);
+}
+template <typename S>
+BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
+                               const fcl::kIOS<S>& kios) {
+  return volumeSeparation(disk, disk_extents, kios.obb);
+}
+
+template <typename BV>
+class DiskMeshCollision {
+ public:
+  using S = typename BV::S;
+
+  DiskMeshCollision(const DiskInShape& disk, const fcl::BVHModel<BV>& model,
+                    const fcl::CollisionGeometry<S>& disk_geometry,
+                    const fcl::CollisionRequest<S>& request, fcl::CollisionResult<S>& result)
+      : disk_(disk),
+        model_(model),
+        disk_geometry_(disk_geometry),
+        request_(request),
+        result_(result),
+        disk_extents_(diskAxisExtents(disk)),
+        disk_magnitude_(diskBoundMagnitude(disk)),
+        disk_reach_(disk.r + disk.c.cwiseAbs().sum()) {}
+
+  /// Adds the contacts to `result` (frame M).
+  void run() {
+    if (model_.getNumBVs() <= 0) return;
+    visit(0);
+  }
+
+ private:
+  /// A volume fitted in S holds its triangles to S's rounding (the distance
+  /// traversal's pad).
+  static constexpr double kPad = kEnvironmentBoundPadUlps * double(std::numeric_limits<S>::epsilon());
+
+  /// collisionRecurse; true once the request is satisfied.
+  bool visit(int node_index) {
+    const auto& node = model_.getBV(node_index);
+    const BoxSeparation volume = volumeSeparation(disk_, disk_extents_, node.bv);
+    // A triangle inside has vertices within volume.reach (1-norm) of M's
+    // origin: its scene, r + |vertex| + |c|, is at most disk_reach_ + that.
+    const double tolerance = kShapeTouchingTolerance * (disk_reach_ + volume.reach) +
+                             kPad * (disk_magnitude_ + volume.magnitude);
+    if (volume.separation > tolerance) return false;  // NaN volumes are searched
+    if (isLeaf(node)) return testLeaf(primitiveId(node));
+    if (visit(node.first_child)) return true;
+    return visit(node.first_child + 1);
+  }
+
+  bool testLeaf(int triangle) {
+    if (!(model_.isOccupied() && disk_geometry_.isOccupied())) return false;
+    const fcl::Triangle& corners = model_.tri_indices[triangle];
+    const Vec3 a = model_.vertices[corners[0]].template cast<double>();
+    const Vec3 b = model_.vertices[corners[1]].template cast<double>();
+    const Vec3 c = model_.vertices[corners[2]].template cast<double>();
+    using Contact = fcl::Contact<S>;
+    if (!request_.enable_contact) {
+      if (!intersectDiskTriangle(disk_, a, b, c, nullptr)) return false;
+      if (result_.numContacts() < request_.num_max_contacts) {
+        result_.addContact(Contact(&model_, &disk_geometry_, triangle, Contact::NONE));
+      }
+    } else {
+      FrameContact contact;
+      if (!intersectDiskTriangle(disk_, a, b, c, &contact)) return false;
+      if (result_.numContacts() < request_.num_max_contacts) {
+        result_.addContact(Contact(&model_, &disk_geometry_, triangle, Contact::NONE,
+                                   contact.pos.template cast<S>(),
+                                   (-contact.separation.direction).template cast<S>(),
+                                   S(std::max(contact.separation.depth, 0.0))));
+      }
+    }
+    return request_.isSatisfied(result_);
+  }
+
+  const DiskInShape& disk_;
+  const fcl::BVHModel<BV>& model_;
+  const fcl::CollisionGeometry<S>& disk_geometry_;
+  const fcl::CollisionRequest<S>& request_;
+  fcl::CollisionResult<S>& result_;
+  const Vec3 disk_extents_;  ///< diskAxisExtents
+  const double disk_magnitude_;
+  const double disk_reach_;  ///< r + |c|_1
+};
+
+/// The disk against the mesh (a triangle model), contacts into `result`
+/// (frame M), for a request without enable_cost.
+template <typename BV>
+void diskMeshCollide(const DiskInShape& disk, const fcl::BVHModel<BV>& model,
+                     const fcl::CollisionGeometry<typename BV::S>& disk_geometry,
+                     const fcl::CollisionRequest<typename BV::S>& request,
+                     fcl::CollisionResult<typename BV::S>& result) {
+  DiskMeshCollision<BV>(disk, model, disk_geometry, request, result).run();
+}
+
+}  // namespace internal
+}  // namespace fcl_disk
