@@ -2,8 +2,8 @@
 //   1. what a disk-disk entry does (distance, collision);
 //   1b. the table of the other shapes a Disk is answered against by fcl_disk,
 //      and what such an entry does;
-//   1c. the table of meshes and octrees: fcl_disk's distance traversals, and
-//      FCL's collision traversals with fcl_disk's narrowphase solver;
+//   1c. the table of meshes and octrees: fcl_disk's distance and collision
+//      traversals (FCL's, with fcl_disk's narrowphase solver, for cost sources);
 //   2. the wrappers that sit in FCL's GEOM_CYLINDER row and column and forward
 //      every pair fcl_disk does not answer to FCL's original function;
 //   3. installing them into the tables user code sees, and into the private
@@ -326,12 +326,14 @@ std::size_t answerDiskShapeCollision(const Disk<S>& disk, const Transform3<S>& X
 // 1c. Meshes and octrees: the node types whose FCL function is a traversal
 //     template over the shape and a narrowphase solver. Distance: fcl_disk's
 //     best-first traversals (src/mesh_distance.h, src/octree_distance.h).
-//     Collision: FCL's template with Shape = Disk and DiskNarrowPhase
-//     (src/disk_narrowphase.h), whose leaf tests are the exact disk-triangle and
-//     disk-box solvers, and the Disk's tight bounding volumes
-//     (include/fcl_disk/disk_bv.h). FCL's result and contact conventions are
-//     kept. FCL's tables have a mesh only as o1 (fcl::distance and
-//     fcl::collide swap a shape-mesh pair); an octree is either.
+//     Collision: fcl_disk's depth-first traversals in FCL's order
+//     (src/mesh_collision.h, src/octree_collision.h); with enable_cost, FCL's
+//     template with Shape = Disk and DiskNarrowPhase (src/disk_narrowphase.h)
+//     and the Disk's tight bounding volumes (include/fcl_disk/disk_bv.h), so
+//     that cost sources are FCL's. Every leaf test is the exact disk-triangle
+//     or disk-box solver. FCL's result and contact conventions are kept.
+//     FCL's tables have a mesh only as o1 (fcl::distance and fcl::collide swap
+//     a shape-mesh pair); an octree is either.
 
 template <typename S>
 const internal::DiskNarrowPhase<S> kDiskNarrowPhase{};

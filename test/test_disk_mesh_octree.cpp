@@ -1207,3 +1207,83 @@ TEST(DiskEnvironment, PointCloudModelsGetNoAnswer) {
   check(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 18>>>(), "KDOP18");
   check(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 24>>>(), "KDOP24");
 }
+
+// The collision traversals prune a volume only beyond the leaf test's touching
+// tolerance (1e-13 of the leaf's scene): a disk lying on a face, or a hair
+// above it (1e-15 here, scenes ~0.3-1), collides; 1e-9 above it does not. A
+// disk parallel to a 10 x 10 grid of triangles in z = 0 (every BV type, so
+// that the pair goes through inner volumes) and over the top faces z = 0.125
+// of a layer of occupied octree cells (resolution 0.125: every cell boundary
+// exact); then tilted, its lowest rim point at that height; and crossing the
+// face. Both argument orders, contacts on and off.
+TEST(DiskEnvironment, CollisionTraversalsKeepPairsWithinTheTouchingTolerance) {
+  struct Case {
+    double height;  // of the disk's lowest point over the face
+    double tilt;    // about x, radians
+    bool collides;
+  };
+  const std::vector<Case> cases = {{0.0, 0.0, true},   {1e-15, 0.0, true}, {1e-9, 0.0, false},
+                                   {0.0, 0.3, true},   {1e-15, 0.3, true}, {1e-9, 0.3, false},
+                                   {-1e-3, 0.3, true}};
+  const double radius = 0.04;
+  // The disk's lowest point at (x, y, face + height).
+  const auto diskPose = [&](double x, double y, double face, const Case& c) {
+    fcl::Transform3d X_WD = fcl::Transform3d::Identity();
+    X_WD.linear() = Eigen::AngleAxisd(c.tilt, Eigen::Vector3d::UnitX()).toRotationMatrix();
+    // Tilted about x, the disk's lowest point is c - r sign(v_z) v (v = R e_y).
+    const Eigen::Vector3d v = X_WD.linear().col(1);
+    const Eigen::Vector3d offset = c.tilt == 0.0 ? Eigen::Vector3d::Zero()
+                                                 : Eigen::Vector3d(-radius * (v.z() > 0 ? 1.0 : -1.0) * v);
+    X_WD.translation() = Eigen::Vector3d(x, y, face + c.height) - offset;
+    return X_WD;
+  };
+  const auto check = [&](const std::shared_ptr<fcl::CollisionGeometry<double>>& environment,
+                         double x, double y, double face, const std::string& name) {
+    auto disk = std::make_shared<fcl_disk::Diskd>(radius);
+    for (const Case& c : cases) {
+      fcl::CollisionObjectd disk_object(disk, diskPose(x, y, face, c)), other(environment);
+      for (const bool disk_first : {true, false}) {
+        for (const bool enable_contact : {false, true}) {
+          fcl::CollisionResultd result;
+          fcl::collide(disk_first ? &disk_object : &other, disk_first ? &other : &disk_object,
+                       fcl::CollisionRequestd(1, enable_contact), result);
+          EXPECT_EQ(result.isCollision(), c.collides)
+              << name << ": height " << c.height << ", tilt " << c.tilt
+              << (disk_first ? ", disk first" : ", other first")
+              << (enable_contact ? ", contacts" : "");
+        }
+      }
+    }
+  };
+  std::vector<fcl::Vector3d> vertices;
+  std::vector<fcl::Triangle> triangles;
+  for (int i = 0; i <= 10; ++i) {
+    for (int j = 0; j <= 10; ++j) vertices.emplace_back(0.1 * i, 0.1 * j, 0.0);
+  }
+  for (int i = 0; i < 10; ++i) {
+    for (int j = 0; j < 10; ++j) {
+      const int k = 11 * i + j;
+      triangles.emplace_back(k, k + 11, k + 12);
+      triangles.emplace_back(k, k + 12, k + 1);
+    }
+  }
+  const auto mesh = [&](auto model) {
+    model->beginModel();
+    model->addSubModel(vertices, triangles);
+    model->endModel();
+    return std::shared_ptr<fcl::CollisionGeometry<double>>(model);
+  };
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::OBBRSS<double>>>()), 0.43, 0.57, 0.0, "OBBRSS");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::RSS<double>>>()), 0.43, 0.57, 0.0, "RSS");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::kIOS<double>>>()), 0.43, 0.57, 0.0, "kIOS");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::OBB<double>>>()), 0.43, 0.57, 0.0, "OBB");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::AABB<double>>>()), 0.43, 0.57, 0.0, "AABB");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 16>>>()), 0.43, 0.57, 0.0, "KDOP16");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 18>>>()), 0.43, 0.57, 0.0, "KDOP18");
+  check(mesh(std::make_shared<fcl::BVHModel<fcl::KDOP<double, 24>>>()), 0.43, 0.57, 0.0, "KDOP24");
+  auto tree = std::make_shared<octomap::OcTree>(0.125);
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) tree->updateNode(octomap::point3d(0.0625 + 0.125 * i, 0.0625 + 0.125 * j, 0.0625), true);
+  }
+  check(std::make_shared<fcl::OcTree<double>>(tree), 0.25, 0.25, 0.125, "octree");
+}
