@@ -36,7 +36,6 @@
 #include <type_traits>
 
 #include "fcl_disk/disk_shape_distance.h"
-#include "fcl_disk/exact_distance.h"
 #include "pair_in_frame1.h"
 
 namespace fcl_disk {
