@@ -38,8 +38,8 @@ namespace internal {
 /// A node's volume as a box for diskBoxSeparation: the box itself (AABB, OBB,
 /// and the OBB of OBBRSS and kIOS), a k-DOP's first three slab pairs (FCL's
 /// coordinate axes), an RSS's rectangle grown by its radius on every side.
-/// Returns the separation and sets the volume's magnitude (boxBoundMagnitude)
-/// and the 1-norm bound |x|_1 <= *reach for its points.
+/// With the separation: the volume's magnitude (boxBoundMagnitude, for the
+/// rounding pad) and `reach`, a bound on the 1-norm of its points.
 struct BoxSeparation {
   double separation;
   double magnitude;

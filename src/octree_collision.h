@@ -12,11 +12,11 @@
 // request is satisfied. FCL tests the disk's bounding square, as an OBB,
 // against each cell's box (15 axes); here a lower bound on the distance from
 // the disk to the cell prunes it (diskAlignedBoxSeparation: the gaps along O's
-// axes and the disk's normal, with the disk's exact extents). A cell is pruned
-// when it exceeds the intersection test's touching
-// tolerance for any leaf inside it (kShapeTouchingTolerance of that leaf's
-// scene, bounded by the cell's) plus the bounds' rounding pad, so no leaf that
-// intersectDiskBox would call intersecting is ever skipped.
+// axes and the disk's normal, with the disk's exact extents) when it exceeds
+// the intersection test's touching tolerance for any leaf inside the cell
+// (kShapeTouchingTolerance of that leaf's scene, bounded by the cell's) plus
+// the bounds' rounding pad, so no leaf that intersectDiskBox would call
+// intersecting is ever skipped.
 //
 // Frame, units: O and its lengths; the disk as a DiskInShape in O. Contacts are
 // FCL's: o1 the octree, o2 the disk, b1 the leaf's offset from the root node,
