@@ -301,6 +301,7 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
 ///  * every vertex projects into the disk: (1) is exact (the first vertex of
 ///    least |a|; a crossing: the point of the first edge p0p1, p1p2, p2p0 whose
 ///    heights change sign or vanish, as both points);
+///  * else (1) as the bound when it is already at `worth_below`;
 ///  * else the certificate of the generic solver, dist >= min_T w.y - h_K(w)
 ///    for unit w (h_K(w) = w.c + r |(u.w, v.w)|), on two directions: from the
 ///    vertex nearest the disk to its nearest disk point, and the triangle's
@@ -314,7 +315,8 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
 ///    vertex (tryEdges): the rim or the face against an edge;
 ///  * else the lower bound, the largest of (1) and the certificates.
 /// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|;
-/// `worth_below`: tryEdges'.
+/// `worth_below`: a traversal's best distance so far (it drops leaves bounded
+/// at or above it), tryEdges'.
 inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
                                  const Vec3& p2, double scale,
                                  double worth_below = std::numeric_limits<double>::infinity()) {
@@ -375,6 +377,10 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   // (1), with rho_min the distance from the axis to the projected triangle.
   const double rho_gap = std::max(originToTriangle2(foot[0], foot[1], foot[2]) - disk.r, 0.0);
   double lower = std::sqrt(a_min * a_min + rho_gap * rho_gap);
+  if (lower >= worth_below) {  // the traversal drops this leaf
+    answer.distance = lower;
+    return answer;
+  }
   // The vertex nearest the disk.
   int k = 0;
   double nearest_squared[3];

@@ -5,12 +5,15 @@
 // Best-first search of the model's hierarchy: a queue of nodes ordered by a
 // lower bound on the distance from the disk to what they hold, popped until the
 // least bound cannot beat the best distance found (FCL's stop rule, with the
-// request's rel_err and abs_err). Bounds (src/environment_bounds.h): an inner
-// node's volume as an oriented box (diskBoxLowerBound); a leaf's triangle by
-// triangleToDisk, which answers exactly when the triangle projects into the
-// disk or its certificate closes (a vertex or the face nearest a disk point),
-// so that leaf never reaches the solver; other leaves run the certified
-// disk-triangle solver (src/leaf_solvers.h) when popped.
+// request's rel_err and abs_err). An opened node's nearer child is opened next
+// without passing through the queue when nothing queued is nearer. Bounds
+// (src/environment_bounds.h): an inner node's volume as an oriented box
+// (diskBoxLowerBound); a leaf's triangle by triangleToDisk, which answers
+// exactly when the triangle projects into the disk or its certificate closes
+// (a vertex or the face nearest a disk point), so that leaf never reaches the
+// solver; a leaf bounded at or above the best distance is dropped; other
+// leaves run the certified disk-triangle solver (src/leaf_solvers.h) when
+// popped.
 //
 // Frame, units: M and its lengths; the disk as a DiskInShape in M. Guarantee:
 // the distance is the least over the triangles of their certified distances,
@@ -156,7 +159,8 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
   queue.clear();
   const double disk_magnitude = diskBoundMagnitude(disk);
   const double disk_scale = disk.r + disk.c.norm();  // the leaf solver's share
-  const auto enqueue = [&](int node_index) {
+  // The bound of a node worth opening, or -1 (pruned, or a leaf settled here).
+  const auto evaluate = [&](int node_index) -> double {
     const auto& node = model.getBV(node_index);
     double bound;
     if (isLeaf(node)) {
@@ -169,8 +173,9 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
           triangleToDisk(disk, p0, p1, p2, disk_scale + triangle_radius, answer.distance);
       if (leaf.exact) {
         consider(triangle, leaf.p_disk, leaf.p_leaf, leaf.distance);
-        return;
+        return -1.0;
       }
+      if (leaf.distance >= answer.distance) return -1.0;
       bound = leaf.distance -
               triangle_pad * (disk_magnitude + triangleBoundMagnitude(p0, p1, p2));
     } else {
@@ -178,18 +183,28 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
       bound = volume.bound - volume_pad * (disk_magnitude + volume.magnitude);
     }
     if (!(bound > 0.0)) bound = 0.0;  // NaN volumes are searched, never pruned
-    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return;
-    queue.emplace_back(bound, node_index);
-    std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
+    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
     if (!isLeaf(node)) prefetchChildren(model, node);
+    return bound;
+  };
+  const auto push = [&](const Entry& entry) {
+    queue.push_back(entry);
+    std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
   };
 
-  enqueue(0);
-  while (!queue.empty()) {
-    const Entry next = queue.front();
+  // The node to open next: the queue's nearest, or the nearer child of the
+  // node just opened when nothing queued is nearer (then the queue cannot
+  // beat the best distance when that child cannot).
+  Entry next(evaluate(0), 0);
+  bool have_next = next.first >= 0.0;
+  while (have_next || !queue.empty()) {
+    if (!have_next) {
+      next = queue.front();
+      std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
+      queue.pop_back();
+    }
+    have_next = false;
     if (cannotImprove(next.first, answer.distance, rel_err, abs_err)) break;
-    std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
-    queue.pop_back();
     const auto& node = model.getBV(next.second);
     if (isLeaf(node)) {
       const int triangle = primitiveId(node);
@@ -198,8 +213,20 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
           solveDiskTriangle(disk, vertex(corners[0]), vertex(corners[1]), vertex(corners[2]));
       consider(triangle, solution.p, solution.q, solution.distance);
     } else {
-      enqueue(node.first_child);
-      enqueue(node.first_child + 1);
+      Entry first(evaluate(node.first_child), node.first_child);
+      Entry second(evaluate(node.first_child + 1), node.first_child + 1);
+      if (second.first >= 0.0 && !(first.first >= 0.0 && first.first <= second.first)) {
+        std::swap(first, second);  // `first` the nearer one worth opening
+      }
+      if (second.first >= 0.0) push(second);
+      if (first.first >= 0.0) {
+        if (queue.empty() || first.first <= queue.front().first) {
+          next = first;
+          have_next = true;
+        } else {
+          push(first);
+        }
+      }
     }
     if (answer.distance <= 0.0) break;  // an overlap: nothing is closer
   }
