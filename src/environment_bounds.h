@@ -26,8 +26,12 @@
 // valid bound); NaN coordinates give a bound of 0 (never prune on NaN).
 #pragma once
 
+#include <fcl/math/bv/AABB.h>
+#include <fcl/math/bv/kDOP.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <optional>
 
@@ -97,6 +101,26 @@ inline double diskBoxLowerBound(const DiskInShape& disk, const OrientedBox& box)
 }
 inline double diskAlignedBoxLowerBound(const DiskInShape& disk, const Vec3& o, const Vec3& e) {
   return diskBoxLowerBound(disk, o, Mat3::Identity(), e);
+}
+
+/// An axis-aligned box in double: centre o, half-extents e >= 0.
+struct AlignedBox {
+  Vec3 o;
+  Vec3 e;
+};
+/// FCL's AABB (a volume, an octree cell), its centre and half-extents formed
+/// in S as FCL forms a cell's box.
+template <typename S>
+inline AlignedBox alignedBoxOf(const fcl::AABB<S>& box) {
+  return {((box.min_ + box.max_) / 2).template cast<double>(),
+          ((box.max_ - box.min_) / 2).template cast<double>()};
+}
+/// A k-DOP's first three slab pairs: the box along FCL's coordinate axes.
+template <typename S, std::size_t N>
+inline AlignedBox alignedBoxOf(const fcl::KDOP<S, N>& kdop) {
+  const Vec3 low(kdop.dist(0), kdop.dist(1), kdop.dist(2));
+  const Vec3 high(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2));
+  return {(low + high) / 2, (high - low) / 2};
 }
 
 /// The disk's half-extents along the frame's axes: r |(u_k, v_k)| (from the

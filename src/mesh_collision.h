@@ -22,13 +22,11 @@
 // (the normal negated, depth >= 0). Thread safety: nothing is shared.
 #pragma once
 
-#include <fcl/narrowphase/collision_request.h>
-#include <fcl/narrowphase/collision_result.h>
-
 #include <algorithm>
 #include <limits>
 
 #include "environment_bounds.h"
+#include "leaf_contact.h"
 #include "leaf_solvers.h"
 #include "mesh_distance.h"  // isLeaf, primitiveId
 
@@ -56,18 +54,12 @@ inline BoxSeparation orientedSeparation(const DiskInShape& disk, const Vec3& o, 
   return {diskBoxSeparation(disk, o, axes.transpose(), e), boxBoundMagnitude(o, e),
           o.cwiseAbs().sum() + 3.0 * e.sum()};
 }
-template <typename S>
+/// An AABB, and a k-DOP as its first three slab pairs (alignedBoxOf).
+template <typename AlignedVolume>
 BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
-                               const fcl::AABB<S>& box) {
-  return alignedSeparation(disk, disk_extents, ((box.min_ + box.max_) / 2).template cast<double>(),
-                           ((box.max_ - box.min_) / 2).template cast<double>());
-}
-template <typename S, std::size_t N>
-BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
-                               const fcl::KDOP<S, N>& kdop) {
-  const Vec3 low(kdop.dist(0), kdop.dist(1), kdop.dist(2));
-  const Vec3 high(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2));
-  return alignedSeparation(disk, disk_extents, (low + high) / 2, (high - low) / 2);
+                               const AlignedVolume& volume) {
+  const AlignedBox box = alignedBoxOf(volume);
+  return alignedSeparation(disk, disk_extents, box.o, box.e);
 }
 template <typename S>
 BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3&, const fcl::OBB<S>& obb) {
@@ -142,23 +134,9 @@ class DiskMeshCollision {
     const Vec3 a = model_.vertices[corners[0]].template cast<double>();
     const Vec3 b = model_.vertices[corners[1]].template cast<double>();
     const Vec3 c = model_.vertices[corners[2]].template cast<double>();
-    using Contact = fcl::Contact<S>;
-    if (!request_.enable_contact) {
-      if (!intersectDiskTriangle(disk_, a, b, c, nullptr)) return false;
-      if (result_.numContacts() < request_.num_max_contacts) {
-        result_.addContact(Contact(&model_, &disk_geometry_, triangle, Contact::NONE));
-      }
-    } else {
-      FrameContact contact;
-      if (!intersectDiskTriangle(disk_, a, b, c, &contact)) return false;
-      if (result_.numContacts() < request_.num_max_contacts) {
-        result_.addContact(Contact(&model_, &disk_geometry_, triangle, Contact::NONE,
-                                   contact.pos.template cast<S>(),
-                                   (-contact.separation.direction).template cast<S>(),
-                                   S(std::max(contact.separation.depth, 0.0))));
-      }
-    }
-    return request_.isSatisfied(result_);
+    return addLeafContact(
+        [&](FrameContact* contact) { return intersectDiskTriangle(disk_, a, b, c, contact); },
+        Vec3::Zero(), model_, disk_geometry_, triangle, request_, result_);
   }
 
   const DiskInShape& disk_;

@@ -52,19 +52,11 @@ struct VolumeBound {
   double bound;
   double magnitude;
 };
-template <typename S>
-VolumeBound volumeBound(const DiskInShape& disk, const fcl::AABB<S>& box) {
-  const Vec3 o = ((box.min_ + box.max_) / 2).template cast<double>();
-  const Vec3 e = ((box.max_ - box.min_) / 2).template cast<double>();
-  return {diskAlignedBoxLowerBound(disk, o, e), boxBoundMagnitude(o, e)};
-}
-/// A k-DOP: its first three slab pairs, FCL's coordinate axes.
-template <typename S, std::size_t N>
-VolumeBound volumeBound(const DiskInShape& disk, const fcl::KDOP<S, N>& kdop) {
-  const Vec3 low(kdop.dist(0), kdop.dist(1), kdop.dist(2));
-  const Vec3 high(kdop.dist(N / 2), kdop.dist(N / 2 + 1), kdop.dist(N / 2 + 2));
-  const Vec3 o = (low + high) / 2, e = (high - low) / 2;
-  return {diskAlignedBoxLowerBound(disk, o, e), boxBoundMagnitude(o, e)};
+/// An AABB, and a k-DOP as its first three slab pairs (alignedBoxOf).
+template <typename AlignedVolume>
+VolumeBound volumeBound(const DiskInShape& disk, const AlignedVolume& volume) {
+  const AlignedBox box = alignedBoxOf(volume);
+  return {diskAlignedBoxLowerBound(disk, box.o, box.e), boxBoundMagnitude(box.o, box.e)};
 }
 template <typename S>
 VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {

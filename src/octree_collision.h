@@ -26,14 +26,13 @@
 #pragma once
 
 #include <fcl/geometry/octree/octree.h>
-#include <fcl/narrowphase/collision_request.h>
-#include <fcl/narrowphase/collision_result.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "environment_bounds.h"
+#include "leaf_contact.h"
 #include "leaf_solvers.h"
 
 namespace fcl_disk {
@@ -74,8 +73,8 @@ class DiskOcTreeCollision {
   /// than r + 2 |h| + |c - o| (|.| <= the 1-norm), nor a touching tolerance
   /// larger than kShapeTouchingTolerance of that.
   bool mayMeet(const fcl::AABB<S>& cell) const {
-    const Vec3 o = ((cell.min_ + cell.max_) / 2).template cast<double>();
-    const Vec3 h = ((cell.max_ - cell.min_) / 2).template cast<double>();
+    const AlignedBox box = alignedBoxOf(cell);
+    const Vec3 &o = box.o, &h = box.e;
     const double tolerance =
         kShapeTouchingTolerance * (disk_.r + 2.0 * h.sum() + (o - disk_.c).cwiseAbs().sum()) +
         kPad * (disk_magnitude_ + boxBoundMagnitude(o, h));
@@ -99,28 +98,12 @@ class DiskOcTreeCollision {
   }
 
   bool testLeaf(const Node* node, const fcl::AABB<S>& cell) {
-    const Vec3 o = ((cell.min_ + cell.max_) / 2).template cast<double>();
-    const Vec3 h = ((cell.max_ - cell.min_) / 2).template cast<double>();
+    const AlignedBox box = alignedBoxOf(cell);
+    const Vec3 &o = box.o, &h = box.e;
     const DiskInShape in_cell{disk_.c - o, disk_.u, disk_.v, disk_.n, disk_.r};
-    const std::intptr_t id = node - tree_.getRoot();
-    using Contact = fcl::Contact<S>;
-    if (!request_.enable_contact) {
-      if (!intersectDiskBox(in_cell, h, nullptr)) return false;
-      if (result_.numContacts() < request_.num_max_contacts) {
-        result_.addContact(Contact(&tree_, &disk_geometry_, id, Contact::NONE));
-      }
-    } else {
-      FrameContact contact;
-      if (!intersectDiskBox(in_cell, h, &contact)) return false;
-      if (result_.numContacts() < request_.num_max_contacts) {
-        const Vec3 pos = o + contact.pos;
-        result_.addContact(Contact(&tree_, &disk_geometry_, id, Contact::NONE,
-                                   pos.template cast<S>(),
-                                   (-contact.separation.direction).template cast<S>(),
-                                   S(std::max(contact.separation.depth, 0.0))));
-      }
-    }
-    return request_.isSatisfied(result_);
+    return addLeafContact(
+        [&](FrameContact* contact) { return intersectDiskBox(in_cell, h, contact); }, o, tree_,
+        disk_geometry_, node - tree_.getRoot(), request_, result_);
   }
 
   const DiskInShape& disk_;

@@ -74,13 +74,9 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
       answer.p_cell = p_cell;
     }
   };
-  const auto boxOf = [](const fcl::AABB<S>& cell, Vec3* centre, Vec3* half) {
-    *centre = ((cell.min_ + cell.max_) / 2).template cast<double>();
-    *half = ((cell.max_ - cell.min_) / 2).template cast<double>();
-  };
   const auto enqueue = [&](const Node* node, const fcl::AABB<S>& cell) {
-    Vec3 centre, half;
-    boxOf(cell, &centre, &half);
+    const AlignedBox box = alignedBoxOf(cell);
+    const Vec3 &centre = box.o, &half = box.e;
     double bound;
     if (!tree.nodeHasChildren(node)) {
       if (!tree.isNodeOccupied(node)) return;
@@ -110,8 +106,8 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
     std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
     queue.pop_back();
     if (!tree.nodeHasChildren(next.node)) {
-      Vec3 centre, half;
-      boxOf(next.cell, &centre, &half);
+      const AlignedBox box = alignedBoxOf(next.cell);
+      const Vec3 &centre = box.o, &half = box.e;
       const DiskShapeSolution solution =
           solveDiskBox(DiskInShape{disk.c - centre, disk.u, disk.v, disk.n, disk.r}, half);
       consider(next.node, solution.p + centre, solution.q + centre, solution.distance);
