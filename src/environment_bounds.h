@@ -456,7 +456,92 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
 }
 
 /// The axis-aligned box centre o, half-extents h (frame of the disk's
-/// DiskInShape) against the disk, as triangleToDisk: exact by (1) when every
+/// DiskInShape) against the disk by its nearest feature, found by projection:
+/// q = proj_box(c) and p = the disk point nearest q (q's foot on the disk's
+/// plane, clamped to the rim). The slabs |x_i - o_i| <= h_i that p lies
+/// outside name the feature of the box nearest p, which is solved in closed
+/// form:
+///  * none: p is a common point (distance 0, p as both points);
+///  * one, e_j: the face turned towards p. The disk's point deepest towards it
+///    (lowestAlongAxis), if it lies over the face, is the nearest disk point and
+///    its height over the face the distance (the face's plane separates the
+///    sets); if it lies beyond the face's rectangle, the feature of that point
+///    is taken instead, once; if it reaches the face's plane, not exact;
+///  * two: the edge along the third axis at p's side of the other two
+///    (segmentToDisk);
+///  * three: the corner at p's side, and its nearest disk point.
+/// An edge's or a corner's pair is exact when the certificate along its
+/// direction closes within kShapeGapTolerance of the scene (certifiedOrBound).
+/// Not exact means only "not settled here": alignedBoxToDisk then sweeps the
+/// corners. `scale`: the solver's, r + |h| + |c - o|.
+inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, const Vec3& o,
+                                                   const Vec3& h, double scale) {
+  const LeafToDisk not_settled;
+  const Vec3 q = (disk.c - o).cwiseMax(-h).cwiseMin(h) + o;
+  Vec3 p = disk.point(disk.nearest(q));
+  // A face whose deepest disk point lies beyond its rectangle hands that point
+  // on to the edge or corner it lies over (one more pass).
+  for (int pass = 0; pass < 2; ++pass) {
+    const Vec3 offset = p - o;
+    Vec3 side;
+    int outside_count = 0, outside_axis = 0, inside_axis = 0;
+    for (int i = 0; i < 3; ++i) {
+      side[i] = offset[i] < 0.0 ? -1.0 : 1.0;
+      if (std::abs(offset[i]) > h[i]) {
+        ++outside_count;
+        outside_axis = i;
+      } else {
+        inside_axis = i;
+      }
+    }
+    if (!std::isfinite(offset.sum() + h.sum())) return not_settled;
+    if (outside_count == 0) {
+      LeafToDisk answer;
+      answer.exact = true;
+      answer.p_disk = answer.p_leaf = p;
+      return answer;
+    }
+    const auto least_along = [&](const Vec3& w) { return w.dot(o) - h.dot(w.cwiseAbs()); };
+    const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_box) {
+      // The certificate alone must close: an overlap has it negative, so a
+      // pair that only nearly touches is not taken for the distance.
+      double lower = -std::numeric_limits<double>::infinity();
+      certifyAlongPair(disk, least_along, upper, p_disk, p_box, &lower);
+      return certifiedOrBound(lower, upper, p_disk, p_box, scale);
+    };
+    if (outside_count == 3) {
+      const Vec3 corner = o + side.cwiseProduct(h);
+      const Vec3 p_disk = disk.point(disk.nearest(corner));
+      return certified((corner - p_disk).norm(), p_disk, corner);
+    }
+    if (outside_count == 2) {
+      const int i = inside_axis;
+      Vec3 from = o + side.cwiseProduct(h), to = from;
+      from[i] = o[i] - h[i];
+      to[i] = o[i] + h[i];
+      const SegmentToDisk edge = segmentToDisk(disk, from, to);
+      return certified(edge.distance, edge.p_disk, edge.p_segment);
+    }
+    const int j = outside_axis, k = (j + 1) % 3, l = (j + 2) % 3;
+    const Vec3 deepest = disk.lowestAlongAxis(j, side[j]);
+    const double height = side[j] * (deepest[j] - o[j]) - h[j];
+    if (!(height > 0.0)) return not_settled;
+    if (std::abs(deepest[k] - o[k]) <= h[k] && std::abs(deepest[l] - o[l]) <= h[l]) {
+      LeafToDisk answer;
+      answer.exact = true;
+      answer.distance = answer.certified = height;
+      answer.p_disk = answer.p_leaf = deepest;
+      answer.p_leaf[j] = o[j] + side[j] * h[j];
+      return answer;
+    }
+    p = deepest;
+  }
+  return not_settled;
+}
+
+/// The axis-aligned box centre o, half-extents h (frame of the disk's
+/// DiskInShape) against the disk: by its nearest feature where that settles it
+/// (alignedBoxToDiskByNearestFeature); else as triangleToDisk: exact by (1) when every
 /// corner projects into the disk (the first corner of least |a| in the order
 /// x fastest, - before +; a crossing: the point where a vanishes on the segment
 /// from the lowest to the highest corner); else the certificate on the
@@ -471,6 +556,10 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
 inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const Vec3& h,
                                    double scale,
                                    double worth_below = std::numeric_limits<double>::infinity()) {
+  if (LeafToDisk by_feature = alignedBoxToDiskByNearestFeature(disk, o, h, scale);
+      by_feature.exact) {
+    return by_feature;
+  }
   LeafToDisk answer;
   const Vec3 d = o - disk.c;
   const double a_o = disk.n.dot(d), x_o = disk.u.dot(d), y_o = disk.v.dot(d);
