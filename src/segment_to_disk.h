@@ -15,8 +15,13 @@
 //   g''(t) = z'^2 + [rho > r] ((1 - r / rho) (x'^2 + y'^2) + (r / rho) rho'^2),
 // rho' = (x x' + y y') / rho. g'' >= 0: g is convex and C^1 (g'' jumps where
 // rho = r), so its minimiser over [0, 1] is an end where g' points outward, or
-// the root of g' inside, found by Newton's method kept in the bracket where g'
-// changes sign (bisection when a step leaves it).
+// the root of g' inside. The segment's stretch over the disk's face, where
+// rho^2 = A t^2 + 2 B t + C <= r^2 (A = x'^2 + y'^2, B = x0 x' + y0 y',
+// C = x0^2 + y0^2, between the roots of the quadratic), has g = z^2 / 2: where
+// g' changes sign across it the root is -z0 / z' in closed form, clamped to
+// it. Else the root lies on one side of it, where g is smooth, and Newton's
+// method finds it, kept in the bracket where g' changes sign (bisection when a
+// step leaves it).
 //
 // Guarantee: none by itself. The answer is a pair of points, one on each set,
 // so its distance is an upper bound; callers certify it with the duality
@@ -25,10 +30,11 @@
 // Degenerate cases: a zero-length segment is its point (t = 0); a segment
 // meeting the disk gives distance 0 with s = p up to rounding (nothing to
 // certify: callers decide meetings otherwise). Ties: where g is flat (a
-// segment parallel to the disk, over its face) the first t the iteration
-// reaches.
+// segment parallel to the disk, over its face) the start of the stretch over
+// the face.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "disk_shape_solver.h"
@@ -36,8 +42,12 @@
 namespace fcl_disk {
 namespace internal {
 
-/// Newton steps in t below this end the iteration: t is in [0, 1], so this
-/// is a few ulps of the segment, below which a step only moves rounding.
+/// A Newton step in t below this ends the iteration once taken: Newton's
+/// error after a step s is about M s^2 (M = |g'''| / (2 g''), of order 1 for
+/// t in [0, 1]), so ~1e-18 here, under double's rounding of t.
+constexpr double kSegmentNewtonStepTolerance = 1e-9;
+/// A bisection step in t below this ends it (bisection gains one bit per
+/// step): a few ulps of t in [0, 1].
 constexpr double kSegmentStepTolerance = 4 * std::numeric_limits<double>::epsilon();
 /// A cap on the iterations: Newton converges in a handful; bisection halves
 /// the bracket each time, so 64 steps reach the tolerance from any bracket.
@@ -81,18 +91,56 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
   } else if (!(slope_high > 0.0)) {
     t = 1.0;
   } else {
-    double low = 0.0, high = 1.0;
-    t = slope_low / (slope_low - slope_high);  // g' interpolated
-    for (int iteration = 0; iteration < kMaxSegmentIterations; ++iteration) {
-      double curvature;
-      const double derivative = slope(t, &curvature);
-      if (derivative == 0.0) break;
-      (derivative < 0.0 ? low : high) = t;
-      double next = t - derivative / curvature;
-      if (!(next > low && next < high)) next = 0.5 * (low + high);
-      const bool converged = std::abs(next - t) <= kSegmentStepTolerance;
-      t = next;
-      if (converged) break;
+    // g'(low) < 0 < g'(high).
+    double low = 0.0, high = 1.0, slope_at_low = slope_low, slope_at_high = slope_high;
+    bool over_face = false;
+    // The stretch over the face, [t_in, t_out] within [0, 1]: the roots of
+    // A t^2 + 2 B t + (C - r^2), the larger-magnitude one first (no
+    // cancellation).
+    const double B = x0 * dx + y0 * dy, C_minus_r2 = x0 * x0 + y0 * y0 - disk.r * disk.r;
+    const double discriminant = B * B - planar_squared * C_minus_r2;
+    if (planar_squared > 0.0 && discriminant >= 0.0) {
+      const double root = std::sqrt(discriminant);
+      const double k = B < 0.0 ? root - B : -(B + root);
+      const double t_k = k / planar_squared, t_other = k != 0.0 ? C_minus_r2 / k : t_k;
+      const double t_in = std::max(std::min(t_k, t_other), 0.0);
+      const double t_out = std::min(std::max(t_k, t_other), 1.0);
+      if (t_in < t_out) {
+        const double slope_in = t_in > 0.0 ? slope(t_in, nullptr) : slope_low;
+        const double slope_out = t_out < 1.0 ? slope(t_out, nullptr) : slope_high;
+        if (slope_in > 0.0) {
+          high = t_in, slope_at_high = slope_in;
+        } else if (slope_out < 0.0) {
+          low = t_out, slope_at_low = slope_out;
+        } else {  // g = z^2 / 2 there: its root, or any t where z' = 0
+          t = dz != 0.0 ? std::clamp(-z0 / dz, t_in, t_out) : t_in;
+          over_face = true;
+        }
+      }
+    }
+    if (!over_face) {
+      t = low + (high - low) * (slope_at_low / (slope_at_low - slope_at_high));  // g' interpolated
+      for (int iteration = 0; iteration < kMaxSegmentIterations; ++iteration) {
+        double curvature;
+        const double derivative = slope(t, &curvature);
+        if (derivative == 0.0) break;
+        (derivative < 0.0 ? low : high) = t;
+        const double next = t - derivative / curvature;
+        if (next > low && next < high) {
+          const bool converged = std::abs(next - t) <= kSegmentNewtonStepTolerance;
+          t = next;
+          if (converged) break;
+        } else if (std::abs(next - t) <= kSegmentStepTolerance) {
+          // Converged onto the bracket's end it just set, by rounding.
+          t = std::clamp(next, low, high);
+          break;
+        } else {
+          const double middle = 0.5 * (low + high);
+          const bool converged = std::abs(middle - t) <= kSegmentStepTolerance;
+          t = middle;
+          if (converged) break;
+        }
+      }
     }
   }
   SegmentToDisk answer;
