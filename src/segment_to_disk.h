@@ -66,26 +66,37 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
                y0 = disk.v.dot(from_centre);
   const double dz = disk.n.dot(step), dx = disk.u.dot(step), dy = disk.v.dot(step);
   const double planar_squared = dx * dx + dy * dy;
-  // g'(t) and g''(t).
-  const auto slope = [&](double t, double* curvature) {
+  // g'(t).
+  const auto slope = [&](double t) {
     const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
     const double rho = std::sqrt(x * x + y * y);
     const double rim_gap = rho - disk.r;
-    double derivative = z * dz;
-    double second = dz * dz;
-    if (rim_gap > 0.0) {
-      const double radial = (x * dx + y * dy) / rho;  // rho'
-      derivative += rim_gap * radial;
-      const double ratio = disk.r / rho;
-      second += (1.0 - ratio) * planar_squared + ratio * radial * radial;
-    }
-    if (curvature) *curvature = second;
-    return derivative;
+    return rim_gap > 0.0 ? z * dz + rim_gap * (x * dx + y * dy) / rho : z * dz;
+  };
+  // Newton's step -g'/g'' at t, and g' times a positive factor (its sign keeps
+  // the bracket). Off the face (rho > r), with m = x x' + y y' = rho rho',
+  //   rho g' = z z' rho + (rho - r) m,   rho^3 g'' = z'^2 rho^3 + (rho - r) A rho^2 + r m^2,
+  // and the step is -rho^2 (rho g') / (rho^3 g''): one division after the
+  // square root on the iteration's chain, where g' and g'' take two.
+  struct NewtonStep {
+    double scaled_slope, step;
+  };
+  const auto newtonStep = [&](double t) {
+    const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
+    const double rho_squared = x * x + y * y;
+    const double rho = std::sqrt(rho_squared);
+    const double rim_gap = rho - disk.r;
+    if (!(rim_gap > 0.0)) return NewtonStep{z * dz, -(z * dz) / (dz * dz)};
+    const double m = x * dx + y * dy;
+    const double scaled_slope = z * dz * rho + rim_gap * m;
+    const double scaled_curvature =
+        (dz * dz * rho + rim_gap * planar_squared) * rho_squared + disk.r * m * m;
+    return NewtonStep{scaled_slope, -rho_squared * scaled_slope / scaled_curvature};
   };
 
   double t;
-  const double slope_low = slope(0.0, nullptr);
-  const double slope_high = slope(1.0, nullptr);
+  const double slope_low = slope(0.0);
+  const double slope_high = slope(1.0);
   if (!(slope_low < 0.0)) {
     t = 0.0;
   } else if (!(slope_high > 0.0)) {
@@ -106,8 +117,8 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
       const double t_in = std::max(std::min(t_k, t_other), 0.0);
       const double t_out = std::min(std::max(t_k, t_other), 1.0);
       if (t_in < t_out) {
-        const double slope_in = t_in > 0.0 ? slope(t_in, nullptr) : slope_low;
-        const double slope_out = t_out < 1.0 ? slope(t_out, nullptr) : slope_high;
+        const double slope_in = t_in > 0.0 ? slope(t_in) : slope_low;
+        const double slope_out = t_out < 1.0 ? slope(t_out) : slope_high;
         if (slope_in > 0.0) {
           high = t_in, slope_at_high = slope_in;
         } else if (slope_out < 0.0) {
@@ -121,11 +132,10 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
     if (!over_face) {
       t = low + (high - low) * (slope_at_low / (slope_at_low - slope_at_high));  // g' interpolated
       for (int iteration = 0; iteration < kMaxSegmentIterations; ++iteration) {
-        double curvature;
-        const double derivative = slope(t, &curvature);
-        if (derivative == 0.0) break;
-        (derivative < 0.0 ? low : high) = t;
-        const double next = t - derivative / curvature;
+        const NewtonStep at = newtonStep(t);
+        if (at.scaled_slope == 0.0) break;
+        (at.scaled_slope < 0.0 ? low : high) = t;
+        const double next = t + at.step;
         if (next > low && next < high) {
           const bool converged = std::abs(next - t) <= kSegmentNewtonStepTolerance;
           t = next;
