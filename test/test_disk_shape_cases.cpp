@@ -73,6 +73,19 @@ TEST(DiskShapeCases, HandDerivedDistances) {
     EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(1, 1, 1), X).distance,
                 0.25, kExact);
   }
+  // Box corner over the disk's face: a unit box turned so that its diagonal
+  // (1, 1, 1) points along -z, centred at (0.3, -0.2, 0.5 + sqrt(3)/2): its
+  // lowest corner at (0.3, -0.2, 0.5), nearest disk point (0.3, -0.2, 0): 0.5.
+  {
+    Transform3d X = Transform3d::Identity();
+    X.linear() = Eigen::Quaterniond::FromTwoVectors(Vector3d(1, 1, 1), -Vector3d::UnitZ())
+                     .toRotationMatrix();
+    X.translation() << 0.3, -0.2, 0.5 + std::sqrt(3.0) / 2;
+    const auto result = fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(1, 1, 1), X);
+    EXPECT_NEAR(result.distance, 0.5, kExact);
+    EXPECT_NEAR((result.p_W_disk - Vector3d(0.3, -0.2, 0)).norm(), 0.0, kExact);
+    EXPECT_NEAR((result.p_W_shape - Vector3d(0.3, -0.2, 0.5)).norm(), 0.0, kExact);
+  }
   // Sphere rho = 0.5 above the rim at (1.3, 0, 0.4): nearest disk point (1, 0, 0),
   // |(0.3, 0, 0.4)| = 0.5: touching, 0.
   EXPECT_NEAR(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Sphere<double>(0.5),
