@@ -455,6 +455,35 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
 }
 
+/// The least w.y over the box centre o, half-extents h: w.o - h.|w|.
+inline double alignedBoxLeastAlong(const Vec3& o, const Vec3& h, const Vec3& w) {
+  return w.dot(o) - h.dot(w.cwiseAbs());
+}
+
+/// The box's face normal to side * e_j (box centre o, half-extents h) against
+/// the disk: the disk's point deepest towards it, that point's height over the
+/// face's plane (> 0: the plane separates the sets by that much), whether it
+/// lies beyond the plane over the face (then its foot on the face is the box's
+/// point nearest the disk, at that height), and that foot.
+struct BoxFaceGap {
+  Vec3 deepest;
+  double height;
+  bool over_face;
+  Vec3 foot;
+};
+inline BoxFaceGap boxFaceGap(const DiskInShape& disk, const Vec3& o, const Vec3& h, int j,
+                             double side) {
+  BoxFaceGap gap;
+  gap.deepest = disk.lowestAlongAxis(j, side);
+  gap.height = side * (gap.deepest[j] - o[j]) - h[j];
+  const int k = (j + 1) % 3, l = (j + 2) % 3;
+  gap.over_face = gap.height > 0.0 && std::abs(gap.deepest[k] - o[k]) <= h[k] &&
+                  std::abs(gap.deepest[l] - o[l]) <= h[l];
+  gap.foot = gap.deepest;
+  gap.foot[j] = o[j] + side * h[j];
+  return gap;
+}
+
 /// The axis-aligned box centre o, half-extents h (frame of the disk's
 /// DiskInShape) against the disk by its nearest feature, found by projection:
 /// q = proj_box(c) and p = the disk point nearest q (q's foot on the disk's
@@ -501,7 +530,7 @@ inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, cons
       answer.p_disk = answer.p_leaf = p;
       return answer;
     }
-    const auto least_along = [&](const Vec3& w) { return w.dot(o) - h.dot(w.cwiseAbs()); };
+    const auto least_along = [&](const Vec3& w) { return alignedBoxLeastAlong(o, h, w); };
     const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_box) {
       // The certificate alone must close: an overlap has it negative, so a
       // pair that only nearly touches is not taken for the distance.
@@ -522,19 +551,18 @@ inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, cons
       const SegmentToDisk edge = segmentToDisk(disk, from, to);
       return certified(edge.distance, edge.p_disk, edge.p_segment);
     }
-    const int j = outside_axis, k = (j + 1) % 3, l = (j + 2) % 3;
-    const Vec3 deepest = disk.lowestAlongAxis(j, side[j]);
-    const double height = side[j] * (deepest[j] - o[j]) - h[j];
-    if (!(height > 0.0)) return not_settled;
-    if (std::abs(deepest[k] - o[k]) <= h[k] && std::abs(deepest[l] - o[l]) <= h[l]) {
+    const int j = outside_axis;
+    const BoxFaceGap face = boxFaceGap(disk, o, h, j, side[j]);
+    if (!(face.height > 0.0)) return not_settled;
+    if (face.over_face) {
       LeafToDisk answer;
       answer.exact = true;
-      answer.distance = answer.certified = height;
-      answer.p_disk = answer.p_leaf = deepest;
-      answer.p_leaf[j] = o[j] + side[j] * h[j];
+      answer.distance = answer.certified = face.height;
+      answer.p_disk = face.deepest;
+      answer.p_leaf = face.foot;
       return answer;
     }
-    p = deepest;
+    p = face.deepest;
   }
   return not_settled;
 }
@@ -629,22 +657,17 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
   double upper = std::sqrt(nearest_squared);
   Vec3 upper_box = corner(nearest);
   Vec3 upper_disk = disk.point(disk.clampedToRim(Vec2(x[nearest], y[nearest])));
-  const auto least_along = [&](const Vec3& w) { return w.dot(o) - h.dot(w.cwiseAbs()); };
+  const auto least_along = [&](const Vec3& w) { return alignedBoxLeastAlong(o, h, w); };
   certifyAlongPair(disk, least_along, upper, upper_disk, upper_box, &lower);
   // The faces turned towards c: normal m = sign(c_j - o_j) e_j.
   for (int j = 0; j < 3; ++j) {
-    const double side = disk.c[j] < o[j] ? -1.0 : 1.0;
-    const Vec3 deepest = disk.lowestAlongAxis(j, side);
-    const double height = side * (deepest[j] - o[j]) - h[j];
-    if (!(height > 0.0)) continue;
-    lower = std::max(lower, height);
-    const int k = (j + 1) % 3, l = (j + 2) % 3;
-    if (std::abs(deepest[k] - o[k]) <= h[k] && std::abs(deepest[l] - o[l]) <= h[l] &&
-        height < upper) {
-      upper = height;
-      upper_disk = deepest;
-      upper_box = deepest;
-      upper_box[j] = o[j] + side * h[j];
+    const BoxFaceGap face = boxFaceGap(disk, o, h, j, disk.c[j] < o[j] ? -1.0 : 1.0);
+    if (!(face.height > 0.0)) continue;
+    lower = std::max(lower, face.height);
+    if (face.over_face && face.height < upper) {
+      upper = face.height;
+      upper_disk = face.deepest;
+      upper_box = face.foot;
     }
   }
   if (edgesWorthTrying(lower, upper, scale, worth_below)) {
