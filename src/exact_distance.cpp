@@ -316,20 +316,25 @@ double separationCertificate(const PairInFrame1& pair, const Vec3& x, const Vec3
                         : face_lower_bound;
 }
 
-double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
-                   double face_lower_bound) {
-  double lower = separationCertificate(pair, x, q, face_lower_bound);
-  // Already within Newton's target of |q - x|: nothing better is needed (the
-  // usual case; this saves the second direction on the iteration's exit path).
-  if ((q - x).norm() - lower <= kGapTolerance * pair.scale()) return lower;
+/// The certificate along t1 x t2 alone (see certificate()), or 0 when the
+/// tangents are too close to parallel for it.
+double tangentCrossCertificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q) {
   // Scaled by the radii, so that w's squares stay in double's range at every
   // length scale (|w| <= 1); oriented towards disk 2 (w.c >= 0).
   const Vec3 t1(-x.y() / pair.r1, x.x() / pair.r1, 0.0);
   Vec3 w = t1.cross(pair.R.col(2).cross((q - pair.c) / pair.r2));
   if (w.dot(pair.c) < 0.0) w = -w;
   const double length = w.norm();
-  if (length > kMinTangentCross) lower = std::max(lower, lowerBound(pair, w) / length);
-  return lower;
+  return length > kMinTangentCross ? lowerBound(pair, w) / length : 0.0;
+}
+
+double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
+                   double face_lower_bound) {
+  const double lower = separationCertificate(pair, x, q, face_lower_bound);
+  // Already within Newton's target of |q - x|: nothing better is needed (the
+  // usual case; this saves the second direction on the iteration's exit path).
+  if ((q - x).norm() - lower <= kGapTolerance * pair.scale()) return lower;
+  return std::max(lower, tangentCrossCertificate(pair, x, q));
 }
 
 /// Exact line search along `step` from s: psi is convex along the segment, so
@@ -480,11 +485,11 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// the rim (section 4), so only a point where the rim steps stall with the
 /// gradient pointing inwards needs rimRim's model step. Returns the certified
 /// answer, or nullopt with *radial at the last point reached when a step is
-/// not a plain one: such a stall, no positive curvature, a clamped step, psi
-/// not decreasing beyond rounding, or a point at rounding level whose
-/// certificate does not close (a certificate that fails earlier only means
-/// more steps). rimRim then goes on from there. *steps receives the number of
-/// steps taken.
+/// not a plain one: such a stall, no positive curvature, a clamped step, or
+/// psi not decreasing beyond rounding (a certificate that fails earlier only
+/// means more steps; one that fails at rounding level is reported with the
+/// t1 x t2 direction added, as rimRim reports it). rimRim then goes on from
+/// there. *steps receives the number of steps taken.
 std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double face_lower_bound,
                                   Vec2* radial_io, int* steps) {
   const Mat3& R = pair.R;
@@ -566,10 +571,14 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     if (outward < 0.0 && converging(dtheta, kappa, distance)) break;
     if (converging(dtheta, kappa, distance)) {
       if (!lower && certified()) return answer(step);
-      // At rounding (rimRim's tests): rimRim reports the point.
+      // At rounding (rimRim's tests), where rimRim reports the point with the
+      // full certificate: along q - x the certificate's rounding grows like
+      // scale (eps scale / d)^2 for small distances d, along t1 x t2 it does not.
       if (dtheta * r1 <= kStepAtRounding * scale ||
           0.5 * r1 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
-        break;
+        const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
+        lower = std::max(*lower, tangentCrossCertificate(pair, x, pair.pointOfDisk2(to_rim * y)));
+        return answer(step);
       }
     }
     const double inverse = 1.0 / denominator;
