@@ -148,6 +148,12 @@ constexpr int kMaxSecularIterations = 32;
 /// rim) would go to the rim-rim iteration, whose problem is degenerate there.
 constexpr double kFaceSlack = internal::kTouchingTolerance;
 
+/// faceOfDisk2MayHold decides in frame 1 what faceOfDisk1 decides on the
+/// swapped pair, whose axes are the transpose of R: the two differ by a few
+/// eps * scale of rounding, so it passes every pair within this many scene
+/// sizes (about 450 eps) beyond faceOfDisk1's own limit.
+constexpr double kFaceTestMargin = 1e-13;
+
 struct Solution {
   Vec3 p;  // on disk 1, frame 1
   Vec3 q;  // on disk 2, frame 1
@@ -192,6 +198,28 @@ std::optional<Solution> faceOfDisk1(const PairInFrame1& pair, double scale) {
     p.head<2>() *= pair.r1 / radial;
   }
   return Solution{p, q, (q - p).norm(), DiskPairFeature::face1_rim2};
+}
+
+/// Whether disk 2's face case (faceOfDisk1 of pair.swapped()) may hold, from
+/// frame 1 without building the swapped pair: disk 1's rim point extreme
+/// towards plane 2, x = -side r1 m2 / |m2| (m2 = (R(0,2), R(1,2)), the
+/// in-plane part of n2; side the sign of c1's height over plane 2), projects
+/// into disk 2 to kFaceSlack + kFaceTestMargin scene sizes. In disk 2's plane
+/// coordinates that foot is y0 + R_xy^T x (y0 = c1's, R_xy the top-left 2x2
+/// block of R); compared scaled by |m2| and squared, so one square root and
+/// no division. Requires disk1ClearanceOfPlane2() > 0; parallel planes
+/// (m2 = 0) pass.
+bool faceOfDisk2MayHold(const PairInFrame1& pair, double scale) {
+  const Mat3& R = pair.R;
+  const Vec2 m2(R(0, 2), R(1, 2));
+  const double m2_length = std::sqrt(m2.squaredNorm());
+  const double side_r1 = pair.c1_in_frame2.z() > 0.0 ? pair.r1 : -pair.r1;
+  // |m2| times the foot: |m2| y0 - side r1 R_xy^T m2.
+  const Vec2 scaled_foot(
+      m2_length * pair.c1_in_frame2.x() - side_r1 * (R(0, 0) * m2.x() + R(1, 0) * m2.y()),
+      m2_length * pair.c1_in_frame2.y() - side_r1 * (R(0, 1) * m2.x() + R(1, 1) * m2.y()));
+  const double reach = (pair.r2 + (kFaceSlack + kFaceTestMargin) * scale) * m2_length;
+  return !(scaled_foot.squaredNorm() > reach * reach);
 }
 
 /// The certificate g(w) = w.c - r1|P1 w| - r2|P2 w|: a lower bound of the
@@ -1041,8 +1069,9 @@ Solution solveInFrame1(const PairInFrame1& pair) {
     return *face1;
   }
   // Disk 2's face case needs disk 1 wholly on one side of plane 2 (the first
-  // test of faceOfDisk1 seen from disk 2), checked before building that view.
-  if (pair.disk1ClearanceOfPlane2() > 0.0) {
+  // test of faceOfDisk1 seen from disk 2) and the foot of disk 1's point
+  // nearest plane 2 inside disk 2, both checked before building that view.
+  if (pair.disk1ClearanceOfPlane2() > 0.0 && faceOfDisk2MayHold(pair, scale)) {
     if (auto face2 = faceOfDisk1(pair.swapped(), scale)) {
       Solution answer = fromDisk2(pair, *face2);
       answer.feature = DiskPairFeature::rim1_face2;
