@@ -550,20 +550,21 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   // The certificate at the current point, once tried, and the distance |q - x|
   // it is compared with (the points themselves, not psi: for a rotation that
   // is orthonormal only to rounding, say a float pose widened to double, psi's
-  // two-dimensional form and |q - x| differ by that rounding).
+  // two-dimensional form and |q - x| differ by that rounding), and the points
+  // it was tried at, which are the answer's.
   std::optional<double> lower;
+  Vec3 x_tried, q_tried;
   double distance_of_points = 0.0;
   const auto certified = [&]() -> bool {
-    const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-    const Vec3 q = pair.pointOfDisk2(to_rim * y);
-    distance_of_points = (q - x).norm();
-    lower = separationCertificate(pair, x, q, face_lower_bound);
+    x_tried = Vec3(r1 * radial.x(), r1 * radial.y(), 0.0);
+    q_tried = pair.pointOfDisk2(to_rim * y);
+    distance_of_points = (q_tried - x_tried).norm();
+    lower = separationCertificate(pair, x_tried, q_tried, face_lower_bound);
     return distance_of_points - *lower <= gap_tolerance;
   };
   const auto answer = [&](int steps_taken) {
-    const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-    return Solution{x, pair.pointOfDisk2(to_rim * y), distance_of_points,
-                    DiskPairFeature::rim_rim, steps_taken + 1, *lower};
+    return Solution{x_tried, q_tried, distance_of_points, DiskPairFeature::rim_rim,
+                    steps_taken + 1, *lower};
   };
   *steps = 0;
   for (int step = 0; step < kMaxNewtonIterations; ++step) {
@@ -604,8 +605,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       // scale (eps scale / d)^2 for small distances d, along t1 x t2 it does not.
       if (dtheta * r1 <= kStepAtRounding * scale ||
           0.5 * r1 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
-        const Vec3 x(r1 * radial.x(), r1 * radial.y(), 0.0);
-        lower = std::max(*lower, tangentCrossCertificate(pair, x, pair.pointOfDisk2(to_rim * y)));
+        lower = std::max(*lower, tangentCrossCertificate(pair, x_tried, q_tried));
         return answer(step);
       }
     }
