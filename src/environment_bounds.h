@@ -252,13 +252,23 @@ struct PlaneSection {
     if (a == 0.0 && count < kMaxSectionPoints) points[count++] = Vec2(x, y);
   }
 
+  /// The rounding of a section point (an interpolation of corner coordinates)
+  /// and of a cross product p x q, relative to |p| |q|: an orientation below it
+  /// has no sign. Loose by design: a fan triangle that holds the centre with
+  /// every edge beyond the rim has |p x q| >= 2 r^2 for each edge (its sides
+  /// are >= 2r), far above it unless the section lies ~1e7 radii away, where
+  /// the caller's other bounds decide.
+  static constexpr double kOrientationRounding = 16 * std::numeric_limits<double>::epsilon();
+
   /// A point of the section within the disk of radius r about the origin (the
   /// disk's centre), if the section meets it: a section point within the
   /// rim; else the point nearest the centre of a segment between two section
   /// points (inside the convex section) that passes within the rim, which a
   /// boundary edge crossing the rim is; else the centre, when a triangle of
-  /// positive area of the fan from the first point contains it (the fan
-  /// covers the section).
+  /// the fan from the first point contains it with each of its three
+  /// orientations signed beyond kOrientationRounding (the fan covers the
+  /// section; a section of coincident points, the plane through a corner,
+  /// has no such triangle).
   /// The disk lies in the plane, so it meets the polytope iff it meets the
   /// section.
   std::optional<Vec2> commonPointWithDisk(double r) const {
@@ -276,15 +286,17 @@ struct PlaneSection {
         if (nearest.squaredNorm() <= r_squared) return nearest;
       }
     }
-    const auto cross = [](const Vec2& p, const Vec2& q) { return p.x() * q.y() - p.y() * q.x(); };
+    // +1 or -1 for an orientation p x q signed beyond its rounding, else 0.
+    const auto orientation = [](const Vec2& p, const Vec2& q) {
+      const double cross = p.x() * q.y() - p.y() * q.x();
+      const double rounding = kOrientationRounding * std::sqrt(p.squaredNorm() * q.squaredNorm());
+      return cross > rounding ? 1 : cross < -rounding ? -1 : 0;
+    };
     for (int i = 1; i < count; ++i) {
+      const int s0 = orientation(points[0], points[i]);
+      if (s0 == 0) continue;
       for (int j = i + 1; j < count; ++j) {
-        const double s0 = cross(points[0], points[i]), s1 = cross(points[i], points[j]),
-                     s2 = cross(points[j], points[0]);
-        // s0 + s1 + s2 is twice the signed area: a flat triangle is a segment,
-        // which the pairs above decided.
-        if (s0 + s1 + s2 != 0.0 && ((s0 >= 0.0 && s1 >= 0.0 && s2 >= 0.0) ||
-                                    (s0 <= 0.0 && s1 <= 0.0 && s2 <= 0.0))) {
+        if (orientation(points[i], points[j]) == s0 && orientation(points[j], points[0]) == s0) {
           return Vec2::Zero();
         }
       }

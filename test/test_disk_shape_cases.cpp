@@ -14,6 +14,7 @@
 #include <limits>
 #include <memory>
 #include <random>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -636,6 +637,81 @@ void checkPlaneSectionCases() {
 TEST(DiskShapeCases, PlaneSectionsDecideMeetings) {
   checkPlaneSectionCases<double>();
   checkPlaneSectionCases<float>();
+}
+
+// A box corner or a triangle vertex a hair below the disk's plane, a hair
+// outside its rim: the plane's section is three points within rounding of one
+// another, whose orientations about the centre are rounding noise and must not
+// be read as a triangle around it. The corner is within outside + below of
+// the rim: the distance is at most that, and both points lie on their shapes. The first case
+// is fuzz_disk_shapes' (a 5e-8 box on the rim of a 1e-6 disk), where the
+// centre was once reported as the common point.
+TEST(DiskShapeCases, CornerJustBelowThePlaneJustOutsideTheRim) {
+  const auto expectOnShapes = [](const fcl_disk::DiskShapeDistanceResult<double>& result, double r,
+                                 const Transform3d& X_WD, auto&& offShape, double gap, double bound,
+                                 const std::string& what) {
+    const Vector3d p = X_WD.inverse() * result.p_W_disk;
+    EXPECT_LE(result.distance, gap + bound) << what;
+    EXPECT_LE(std::abs(p.z()), bound) << what;
+    EXPECT_LE(std::hypot(p.x(), p.y()), r + bound) << what;
+    EXPECT_LE(offShape(result.p_W_shape), bound) << what;
+    EXPECT_NEAR((result.p_W_disk - result.p_W_shape).norm(), result.distance, bound) << what;
+  };
+  {
+    const double r = 1.0161242084382392e-06;
+    const Eigen::Vector3d half(2.6424048218509195e-08, 2e-08, 2e-08);
+    Transform3d X_WD = kIdentity, X_WS = kIdentity;
+    X_WD.matrix().topRows<3>() << 1.5259021893143437e-05, 0.9999999997671587, 1.5259254734445584e-05, 0,
+        1.5259254734445584e-05, 1.5259021893143437e-05, -0.9999999997671587, 0,
+        -0.9999999997671587, 1.5259254734445584e-05, -1.5259021893143437e-05, 0;
+    X_WS.matrix().topRows<3>() << 0.048884637266823003, -0.28409948619352487, -0.9575477921147677,
+        7.4203308577808913e-07, 0.99857559749171176, 0.034422141062715655, 0.040766313283510942,
+        -2.7890179159535365e-08, 0.021379156516616732, -0.95817670507544361, 0.28537752805258565,
+        7.3141582570604751e-07;
+    const auto offBox = [&](const Vector3d& q_W) {
+      return ((X_WS.inverse() * q_W).cwiseAbs() - half).cwiseMax(0.0).norm();
+    };
+    const double scale = r + half.norm() + X_WS.translation().norm();
+    const auto result = fcl_disk::diskShapeDistance(r, X_WD, fcl::Box<double>(2 * half), X_WS);
+    expectOnShapes(result, r, X_WD, offBox, 0.0, kExact * scale, "fuzz case");
+  }
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::normal_distribution<double> gauss;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const Eigen::Matrix3d R =
+        Eigen::Quaterniond(gauss(rng), gauss(rng), gauss(rng), gauss(rng)).normalized().toRotationMatrix();
+    const double angle = 2 * M_PI * unit(rng);
+    const double outside = std::pow(10.0, -16 + 4 * unit(rng)), below = std::pow(10.0, -18 + 6 * unit(rng));
+    const Vector3d dip((1 + outside) * std::cos(angle), (1 + outside) * std::sin(angle), -below);
+    // A box whose lowest corner is `dip`.
+    const Vector3d half(0.02 + 0.1 * unit(rng), 0.02 + 0.1 * unit(rng), 0.02 + 0.1 * unit(rng));
+    Vector3d lowest;
+    for (int i = 0; i < 3; ++i) lowest[i] = R(2, i) > 0 ? -half[i] : half[i];
+    Transform3d X_WS = kIdentity;
+    X_WS.linear() = R;
+    X_WS.translation() = dip - R * lowest;
+    const auto offBox = [&](const Vector3d& q_W) {
+      return ((X_WS.inverse() * q_W).cwiseAbs() - half).cwiseMax(0.0).norm();
+    };
+    expectOnShapes(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(2 * half), X_WS), 1.0,
+                   kIdentity, offBox, outside + below, kExact, "box, trial " + std::to_string(trial));
+    // A triangle with its vertex at `dip`, the others above the plane.
+    const Vector3d b = dip + 0.1 * R.col(0) + Vector3d(0, 0, 0.05 + 0.1 * unit(rng)),
+                   c = dip + 0.1 * R.col(1) + Vector3d(0, 0, 0.05 + 0.1 * unit(rng));
+    const fcl::TriangleP<double> triangle(dip, b, c);
+    const auto offTriangle = [&](const Vector3d& q_W) {
+      // q on the triangle's plane, with barycentric coordinates >= 0.
+      const Vector3d n = (b - dip).cross(c - dip);
+      const double area = n.norm();
+      const double off_plane = std::abs(n.dot(q_W - dip)) / area;
+      const double u = (c - b).cross(q_W - b).dot(n) / area, v = (dip - c).cross(q_W - c).dot(n) / area,
+                   w = (b - dip).cross(q_W - dip).dot(n) / area;
+      return std::max({off_plane, -u / (c - b).norm(), -v / (dip - c).norm(), -w / (b - dip).norm(), 0.0});
+    };
+    expectOnShapes(fcl_disk::diskShapeDistance(1.0, kIdentity, triangle, kIdentity), 1.0, kIdentity,
+                   offTriangle, outside + below, kExact, "triangle, trial " + std::to_string(trial));
+  }
 }
 
 /// How far a solver answer on a hull with faces planar only to thickness delta
