@@ -71,16 +71,27 @@ bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
   return checkDiskAndShapePose(radius, X_WD, X_WS).valid;
 }
 
-template <typename S>
-DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
-                                   const DiskShapeSolution& solution) {
+/// The result of a solution in the shape's frame, or (toWorldFromShapeOrigin)
+/// in diskAtShapeOrigin's.
+template <typename S, typename ToWorld>
+DiskShapeDistanceResult<S> resultInWorld(const DiskShapeSolution& solution, ToWorld to_world) {
   DiskShapeDistanceResult<S> result;
   result.distance = S(solution.distance);
   result.lower_bound = S(std::min(solution.lower_bound, solution.distance));
-  result.p_W_disk = toWorldPoint(X_WS, solution.p).template cast<S>();
-  result.p_W_shape = toWorldPoint(X_WS, solution.q).template cast<S>();
+  result.p_W_disk = to_world(solution.p).template cast<S>();
+  result.p_W_shape = to_world(solution.q).template cast<S>();
   result.iterations = solution.iterations;
   return result;
+}
+template <typename S>
+DiskShapeDistanceResult<S> toWorld(const fcl::Transform3<S>& X_WS,
+                                   const DiskShapeSolution& solution) {
+  return resultInWorld<S>(solution, [&](const Vec3& p) { return toWorldPoint(X_WS, p); });
+}
+template <typename S>
+DiskShapeDistanceResult<S> toWorldFromShapeOrigin(const fcl::Transform3<S>& X_WS,
+                                                  const DiskShapeSolution& solution) {
+  return resultInWorld<S>(solution, [&](const Vec3& p) { return fromShapeOrigin(X_WS, p); });
 }
 
 /// Among the unit candidate directions w (the disk's normals and the shape's
@@ -156,6 +167,16 @@ DiskContact<S> contactInWorld(const fcl::Transform3<S>& X_WS, const Vec3& common
   DiskContact<S> contact;
   contact.pos = toWorldPoint(X_WS, common_point).template cast<S>();
   contact.normal = (X_WS.linear().template cast<double>() * separation.direction).template cast<S>();
+  contact.penetration_depth = S(std::max(separation.depth, 0.0));
+  return contact;
+}
+/// contactInWorld from diskAtShapeOrigin's frame.
+template <typename S>
+DiskContact<S> contactFromShapeOrigin(const fcl::Transform3<S>& X_WS, const Vec3& common_point,
+                                      const Separation& separation) {
+  DiskContact<S> contact;
+  contact.pos = fromShapeOrigin(X_WS, common_point).template cast<S>();
+  contact.normal = separation.direction.template cast<S>();
   contact.penetration_depth = S(std::max(separation.depth, 0.0));
   return contact;
 }

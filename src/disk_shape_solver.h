@@ -189,6 +189,28 @@ Vec3 toWorldPoint(const fcl::Transform3<S>& X_WS, const Vec3& p_S) {
   return X_WS.translation().template cast<double>() + X_WS.linear().template cast<double>() * p_S;
 }
 
+/// The disk of radius r and pose X_WD in the frame with the origin of X_WS and
+/// the world's axes (frame S translated, not turned), for shapes that need at
+/// most their normal turned (a sphere none, a halfspace or a plane its
+/// boundary's): it spares turning the disk into frame S (three products) and
+/// the answer back (two). Centre c_D - c_S (formed first, as diskInShape's),
+/// axes the columns of R_WD, normal u x v.
+template <typename S>
+DiskInShape diskAtShapeOrigin(S radius, const fcl::Transform3<S>& X_WD,
+                              const fcl::Transform3<S>& X_WS) {
+  const Mat3 R_WD = X_WD.linear().template cast<double>();
+  const Vec3 u = R_WD.col(0), v = R_WD.col(1);
+  return DiskInShape{
+      X_WD.translation().template cast<double>() - X_WS.translation().template cast<double>(), u, v,
+      u.cross(v), double(radius)};
+}
+
+/// A point of diskAtShapeOrigin's frame in the world.
+template <typename S>
+Vec3 fromShapeOrigin(const fcl::Transform3<S>& X_WS, const Vec3& p) {
+  return X_WS.translation().template cast<double>() + p;
+}
+
 /// What the solver is asked: the distance, or only whether the sets meet (which
 /// may stop as soon as either answer is proven).
 enum class SolverGoal { distance, intersection };

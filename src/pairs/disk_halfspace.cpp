@@ -1,15 +1,18 @@
 // Disk - fcl::Halfspace {y : n.y <= d} and fcl::Plane {y : n.y = d}, closed
 // form: the disk's heights over the boundary plane span h0 +- r |P n| (h0 the
 // centre's height, P n the plane normal's component in the disk's plane).
-// docs/disk_shape_distance.md, section 4.
+// Computed in the frame with the shape's origin and the world's axes
+// (diskAtShapeOrigin): one product turns the boundary's normal into it, where
+// the shape's frame would take three to turn the disk and two to turn the
+// answer back. docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 
 namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The boundary plane seen from the disk (shape frame): unit normal n, the disk
-/// centre's height h0 over the plane, and P n.
+/// The boundary plane seen from the disk (diskAtShapeOrigin's frame): unit
+/// normal n, the disk centre's height h0 over the plane, and P n.
 struct BoundaryOfDisk {
   Vec3 n;
   double h0;
@@ -31,15 +34,17 @@ bool isValidBoundary(const fcl::Vector3<S>& n, S d) {
   return n.allFinite() && (n.array() != S(0)).any() && std::abs(d) <= kMaxDiskLength<S>;
 }
 
+/// n_S, d: the shape's (shape frame); X_WS its pose; `disk` from diskAtShapeOrigin.
 template <typename S>
-BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d, const DiskInShape& disk) {
+BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d, const fcl::Transform3<S>& X_WS,
+                              const DiskInShape& disk) {
   // Scaled by its largest component first: a normal of tiny (even subnormal)
-  // components still normalises to a unit vector.
+  // components still normalises to a unit vector, which is then turned.
   const Vec3 n_raw = n_S.template cast<double>();
   const double largest = n_raw.cwiseAbs().maxCoeff();
   const Vec3 n_scaled = n_raw / largest;
   const double scaled_length = n_scaled.norm();
-  const Vec3 n = n_scaled / scaled_length;
+  const Vec3 n = X_WS.linear().template cast<double>() * (n_scaled / scaled_length);
   const double length = largest * scaled_length;
   const Vec2 planar = disk.inPlane(n);
   return BoundaryOfDisk{n, n.dot(disk.c) - double(d) / length,
@@ -51,17 +56,16 @@ double boundaryScale(const DiskInShape& disk, const BoundaryOfDisk& boundary) {
   return disk.r + std::abs(boundary.h0);
 }
 
-/// The result for points p, q (shape frame) at `distance`, which the closed
-/// form proves: the certificate at w = -+n equals it.
+/// The result for points p, q (diskAtShapeOrigin's frame) at `distance`, which
+/// the closed form proves: the certificate at w = -+n equals it.
 template <typename S>
 DiskShapeDistanceResult<S> closedForm(const fcl::Transform3<S>& X_WS, const Vec3& p, const Vec3& q,
                                       double distance) {
-  DiskShapeSolution solution;
-  solution.p = p;
-  solution.q = q;
-  solution.distance = distance;
-  solution.lower_bound = distance;
-  return toWorld(X_WS, solution);
+  DiskShapeDistanceResult<S> result;
+  result.distance = result.lower_bound = S(distance);
+  result.p_W_disk = fromShapeOrigin(X_WS, p).template cast<S>();
+  result.p_W_shape = fromShapeOrigin(X_WS, q).template cast<S>();
+  return result;
 }
 
 }  // namespace
@@ -74,8 +78,8 @@ struct DiskShapePair<fcl::Halfspace<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(halfspace.n, halfspace.d)) {
       return nanDiskShapeResult<S>();
     }
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
-    const BoundaryOfDisk boundary = boundaryOfDisk(halfspace.n, halfspace.d, disk);
+    const DiskInShape disk = diskAtShapeOrigin(radius, X_WD, X_WS);
+    const BoundaryOfDisk boundary = boundaryOfDisk(halfspace.n, halfspace.d, X_WS, disk);
     // The lowest disk point p is at height h0 - r |P n|: apart iff that is > 0.
     const Vec3 p = boundary.lowestPoint(disk);
     const double height = boundary.h0 - disk.r * boundary.in_plane;
@@ -92,14 +96,13 @@ struct DiskShapePair<fcl::Halfspace<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(halfspace.n, halfspace.d)) {
       return false;
     }
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
-    const BoundaryOfDisk boundary = boundaryOfDisk(halfspace.n, halfspace.d, disk);
+    const DiskInShape disk = diskAtShapeOrigin(radius, X_WD, X_WS);
+    const BoundaryOfDisk boundary = boundaryOfDisk(halfspace.n, halfspace.d, X_WS, disk);
     const double height = boundary.h0 - disk.r * boundary.in_plane;
     if (height > kShapeTouchingTolerance * boundaryScale(disk, boundary)) return false;
     if (contact) {
-      const Mat3 R_WS = X_WS.linear().template cast<double>();
-      contact->pos = toWorldPoint(X_WS, boundary.lowestPoint(disk)).template cast<S>();
-      contact->normal = (-(R_WS * boundary.n)).template cast<S>();
+      contact->pos = fromShapeOrigin(X_WS, boundary.lowestPoint(disk)).template cast<S>();
+      contact->normal = (-boundary.n).template cast<S>();
       contact->penetration_depth = S(std::max(-height, 0.0));
     }
     return true;
@@ -137,10 +140,10 @@ struct DiskShapePair<fcl::Plane<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(plane.n, plane.d)) {
       return nanDiskShapeResult<S>();
     }
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const DiskInShape disk = diskAtShapeOrigin(radius, X_WD, X_WS);
     Vec3 p, q;
     double distance;
-    solve(disk, boundaryOfDisk(plane.n, plane.d, disk), &p, &q, &distance);
+    solve(disk, boundaryOfDisk(plane.n, plane.d, X_WS, disk), &p, &q, &distance);
     return closedForm<S>(X_WS, p, q, distance);
   }
 
@@ -151,19 +154,18 @@ struct DiskShapePair<fcl::Plane<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidBoundary(plane.n, plane.d)) {
       return false;
     }
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
-    const BoundaryOfDisk boundary = boundaryOfDisk(plane.n, plane.d, disk);
+    const DiskInShape disk = diskAtShapeOrigin(radius, X_WD, X_WS);
+    const BoundaryOfDisk boundary = boundaryOfDisk(plane.n, plane.d, X_WS, disk);
     Vec3 p, q;
     double distance;
     solve(disk, boundary, &p, &q, &distance);
     if (distance > kShapeTouchingTolerance * boundaryScale(disk, boundary)) return false;
     if (contact) {
-      const Mat3 R_WS = X_WS.linear().template cast<double>();
       const double above = boundary.h0 + disk.r * boundary.in_plane;  // move by this along +n
       const double below = disk.r * boundary.in_plane - boundary.h0;  // or this along -n
       const bool up = above <= below;
-      contact->pos = toWorldPoint(X_WS, p).template cast<S>();
-      contact->normal = ((up ? 1.0 : -1.0) * (R_WS * boundary.n)).template cast<S>();
+      contact->pos = fromShapeOrigin(X_WS, p).template cast<S>();
+      contact->normal = ((up ? 1.0 : -1.0) * boundary.n).template cast<S>();
       contact->penetration_depth = S(std::max(up ? above : below, 0.0));
     }
     return true;

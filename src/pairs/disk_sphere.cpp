@@ -1,13 +1,15 @@
 // Disk - fcl::Sphere, closed form: the sphere is its centre inflated by its
 // radius, and the disk point nearest the centre (the centre's foot on the disk's
-// plane, clamped to the rim) is optimal. docs/disk_shape_distance.md, section 4.
+// plane, clamped to the rim) is optimal. A sphere is the same set in every
+// rotation of its frame, so the pair is solved in diskAtShapeOrigin's frame (the
+// world's axes, the centre as origin). docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 
 namespace fcl_disk {
 namespace internal {
 namespace {
 
-/// The sphere's centre, the origin of its frame: the core whose support the
+/// The sphere's centre, the origin of the frame: the core whose support the
 /// certificate and the contact use.
 struct CentreTarget {
   Vec3 support(const Vec3&) const { return Vec3::Zero(); }
@@ -50,13 +52,14 @@ struct DiskShapePair<fcl::Sphere<S>> {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidSphere(sphere)) {
       return nanDiskShapeResult<S>();
     }
-    return toWorld(X_WS, solveSphere(diskInShape(radius, X_WD, X_WS), double(sphere.radius)));
+    return toWorldFromShapeOrigin(
+        X_WS, solveSphere(diskAtShapeOrigin(radius, X_WD, X_WS), double(sphere.radius)));
   }
 
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const fcl::Sphere<S>& sphere,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
     if (!isValidDiskAndShapePose(radius, X_WD, X_WS) || !isValidSphere(sphere)) return false;
-    const DiskInShape disk = diskInShape(radius, X_WD, X_WS);
+    const DiskInShape disk = diskAtShapeOrigin(radius, X_WD, X_WS);
     const double rho = double(sphere.radius);
     const DiskShapeSolution solution = solveSphere(disk, rho);
     const double scale = disk.r + rho + disk.c.norm();
@@ -64,7 +67,7 @@ struct DiskShapePair<fcl::Sphere<S>> {
     if (contact) {
       const auto depth_along = [&](const Vec3& w) { return disk.support(w) + rho; };
       // Candidates: the disk's normals and the direction from p to the centre.
-      *contact = contactInWorld<S>(
+      *contact = contactFromShapeOrigin<S>(
           X_WS, solution.p,
           shortestSeparation(disk, std::array<Vec3, 1>{-solution.p}, depth_along));
     }
