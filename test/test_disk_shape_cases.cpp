@@ -642,10 +642,10 @@ TEST(DiskShapeCases, PlaneSectionsDecideMeetings) {
 // A box corner or a triangle vertex a hair below the disk's plane, a hair
 // outside its rim: the plane's section is three points within rounding of one
 // another, whose orientations about the centre are rounding noise and must not
-// be read as a triangle around it. The corner is within outside + below of
-// the rim: the distance is at most that, and both points lie on their shapes. The first case
-// is fuzz_disk_shapes' (a 5e-8 box on the rim of a 1e-6 disk), where the
-// centre was once reported as the common point.
+// be read as a triangle around it (PlaneSection). The corner is within
+// outside + below of the rim: the distance is at most that, and both points
+// lie on their shapes. The first case is fuzz_disk_shapes'
+// regression-plane-section-corner-on-rim: a 5e-8 box on the rim of a 1e-6 disk.
 TEST(DiskShapeCases, CornerJustBelowThePlaneJustOutsideTheRim) {
   const auto expectOnShapes = [](const fcl_disk::DiskShapeDistanceResult<double>& result, double r,
                                  const Transform3d& X_WD, auto&& offShape, double gap, double bound,
@@ -697,8 +697,8 @@ TEST(DiskShapeCases, CornerJustBelowThePlaneJustOutsideTheRim) {
     expectOnShapes(fcl_disk::diskShapeDistance(1.0, kIdentity, fcl::Box<double>(2 * half), X_WS), 1.0,
                    kIdentity, offBox, outside + below, kExact, "box, trial " + std::to_string(trial));
     // A triangle with its vertex at `dip`, the others above the plane.
-    const Vector3d b = dip + 0.1 * R.col(0) + Vector3d(0, 0, 0.05 + 0.1 * unit(rng)),
-                   c = dip + 0.1 * R.col(1) + Vector3d(0, 0, 0.05 + 0.1 * unit(rng));
+    const Vector3d b = dip + 0.1 * R.col(0) + Vector3d(0, 0, 0.15 + 0.1 * unit(rng)),
+                   c = dip + 0.1 * R.col(1) + Vector3d(0, 0, 0.15 + 0.1 * unit(rng));
     const fcl::TriangleP<double> triangle(dip, b, c);
     const auto offTriangle = [&](const Vector3d& q_W) {
       // q on the triangle's plane, with barycentric coordinates >= 0.
