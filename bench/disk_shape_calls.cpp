@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "disk_shape_cases.h"
+#include "disk_shape_fcl.h"
 #include "fcl_disk/fcl_disk.h"
 
 namespace {
@@ -27,22 +28,9 @@ namespace dsc = fcl_disk_shape_cases;
 /// diskShapeDistance on `shape` as its FCL class.
 double distanceTo(const fcl::ShapeBase<double>& shape, const fcl::Transform3<double>& X_WD,
                   const fcl::Transform3<double>& X_WS) {
-  const auto solve = [&](const auto& typed) {
+  return fcl_disk_test::oracle::withShapeClass(shape, [&](const auto& typed) {
     return fcl_disk::diskShapeDistance(dsc::kDiskRadius, X_WD, typed, X_WS).distance;
-  };
-  switch (shape.getNodeType()) {
-    case fcl::GEOM_SPHERE: return solve(static_cast<const fcl::Sphere<double>&>(shape));
-    case fcl::GEOM_BOX: return solve(static_cast<const fcl::Box<double>&>(shape));
-    case fcl::GEOM_CAPSULE: return solve(static_cast<const fcl::Capsule<double>&>(shape));
-    case fcl::GEOM_CYLINDER: return solve(static_cast<const fcl::Cylinder<double>&>(shape));
-    case fcl::GEOM_CONE: return solve(static_cast<const fcl::Cone<double>&>(shape));
-    case fcl::GEOM_ELLIPSOID: return solve(static_cast<const fcl::Ellipsoid<double>&>(shape));
-    case fcl::GEOM_CONVEX: return solve(static_cast<const fcl::Convex<double>&>(shape));
-    case fcl::GEOM_HALFSPACE: return solve(static_cast<const fcl::Halfspace<double>&>(shape));
-    case fcl::GEOM_PLANE: return solve(static_cast<const fcl::Plane<double>&>(shape));
-    case fcl::GEOM_TRIANGLE: return solve(static_cast<const fcl::TriangleP<double>&>(shape));
-    default: return 0.0;
-  }
+  });
 }
 }  // namespace
 
