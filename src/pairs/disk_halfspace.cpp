@@ -61,11 +61,11 @@ double boundaryScale(const DiskInShape& disk, const BoundaryOfDisk& boundary) {
 template <typename S>
 DiskShapeDistanceResult<S> closedForm(const fcl::Transform3<S>& X_WS, const Vec3& p, const Vec3& q,
                                       double distance) {
-  DiskShapeDistanceResult<S> result;
-  result.distance = result.lower_bound = S(distance);
-  result.p_W_disk = fromShapeOrigin(X_WS, p).template cast<S>();
-  result.p_W_shape = fromShapeOrigin(X_WS, q).template cast<S>();
-  return result;
+  DiskShapeSolution solution;
+  solution.p = p;
+  solution.q = q;
+  solution.distance = solution.lower_bound = distance;
+  return toWorldFromShapeOrigin(X_WS, solution);
 }
 
 }  // namespace
