@@ -496,6 +496,51 @@ inline BoxFaceGap boxFaceGap(const DiskInShape& disk, const Vec3& o, const Vec3&
   return gap;
 }
 
+/// Where the segment from a to b crosses the disk's plane within the rim, in
+/// in-plane coordinates: a common point of the segment and the disk. None if
+/// it does not (a segment lying in the plane is tried at a only).
+inline std::optional<Vec2> segmentCrossingWithinRim(const DiskInShape& disk, const Vec3& a,
+                                                    const Vec3& b) {
+  const double z_a = disk.n.dot(a - disk.c), z_b = disk.n.dot(b - disk.c);
+  if (!((z_a <= 0.0 && z_b >= 0.0) || (z_a >= 0.0 && z_b <= 0.0))) return std::nullopt;
+  const double t = z_a != z_b ? z_a / (z_a - z_b) : 0.0;
+  const Vec2 s = disk.inPlane(a + t * (b - a) - disk.c);
+  if (!(s.squaredNorm() <= disk.r * disk.r)) return std::nullopt;
+  return s;
+}
+
+/// A common point of the disk and the box's face normal to e_j (box centre o,
+/// half-extents h), in in-plane coordinates, given a disk point m on the
+/// face's plane: the disk meets that plane along the chord through m whose
+/// in-plane direction (-v_j, u_j) keeps y_j constant; the middle of the
+/// chord's stretch within the face's rectangle (both other slabs), if the
+/// stretch is not empty. None when it is, or when the disk is parallel to the
+/// plane (no chord).
+inline std::optional<Vec2> faceChordWithinRim(const DiskInShape& disk, const Vec3& o,
+                                              const Vec3& h, int j, const Vec3& m) {
+  const Vec2 s_m = disk.inPlane(m - disk.c);
+  const Vec2 along(-disk.v[j], disk.u[j]);
+  // The chord s_m + tau along within the rim: tau between the roots of
+  // |s_m + tau along|^2 = r^2 (m lies within the rim, but for rounding).
+  const double a = along.squaredNorm(), b = s_m.dot(along), c = s_m.squaredNorm() - disk.r * disk.r;
+  if (!(a > 0.0)) return std::nullopt;
+  const double root = std::sqrt(std::max(b * b - a * c, 0.0));
+  double low = (-b - root) / a, high = (-b + root) / a;
+  for (const int k : {(j + 1) % 3, (j + 2) % 3}) {  // clip to |y_k - o_k| <= h_k
+    const double rate = disk.u[k] * along.x() + disk.v[k] * along.y();
+    const double start = m[k] - o[k];
+    if (rate == 0.0) {
+      if (!(std::abs(start) <= h[k])) return std::nullopt;
+      continue;
+    }
+    const double t0 = (-h[k] - start) / rate, t1 = (h[k] - start) / rate;
+    low = std::max(low, std::min(t0, t1));
+    high = std::min(high, std::max(t0, t1));
+  }
+  if (!(low <= high)) return std::nullopt;
+  return Vec2(s_m + (0.5 * (low + high)) * along);
+}
+
 /// The axis-aligned box centre o, half-extents h (frame of the disk's
 /// DiskInShape) against the disk by its nearest feature, found by projection:
 /// q = proj_box(c) and p = the disk point nearest q (q's foot on the disk's
@@ -507,9 +552,13 @@ inline BoxFaceGap boxFaceGap(const DiskInShape& disk, const Vec3& o, const Vec3&
 ///    (lowestAlongAxis), if it lies over the face, is the nearest disk point and
 ///    its height over the face the distance (the face's plane separates the
 ///    sets); if it lies beyond the face's rectangle, the feature of that point
-///    is taken instead, once; if it reaches the face's plane, not exact;
+///    is taken instead, once; if it reaches the face's plane, the disk's chord
+///    in that plane meets the face at a common point (faceChordWithinRim), or
+///    not exact;
 ///  * two: the edge along the third axis at p's side of the other two
-///    (segmentToDisk);
+///    (segmentToDisk); an overlap leaves its certificate open, and the edge's
+///    crossing of the disk's plane within the rim is a common point
+///    (segmentCrossingWithinRim);
 ///  * three: the corner at p's side, and its nearest disk point.
 /// An edge's or a corner's pair is exact when the certificate along its
 /// direction closes within kShapeGapTolerance of the scene (certifiedOrBound).
@@ -561,11 +610,23 @@ inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, cons
       from[i] = o[i] - h[i];
       to[i] = o[i] + h[i];
       const SegmentToDisk edge = segmentToDisk(disk, from, to);
-      return certified(edge.distance, edge.p_disk, edge.p_segment);
+      if (LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
+          by_edge.exact) {
+        return by_edge;
+      }
+      if (const auto common = segmentCrossingWithinRim(disk, from, to)) return meetingAt(disk, *common);
+      return not_settled;
     }
     const int j = outside_axis;
     const BoxFaceGap face = boxFaceGap(disk, o, h, j, side[j]);
-    if (!(face.height > 0.0)) return not_settled;
+    if (!(face.height > 0.0)) {
+      // p lies beyond the face's plane, the deepest point on or inside it:
+      // the segment between them crosses the plane at m.
+      const double p_height = side[j] * (p[j] - o[j]) - h[j];
+      const Vec3 m = p + (p_height / (p_height - face.height)) * (face.deepest - p);
+      if (const auto common = faceChordWithinRim(disk, o, h, j, m)) return meetingAt(disk, *common);
+      return not_settled;
+    }
     if (face.over_face) {
       LeafToDisk answer;
       answer.exact = true;

@@ -639,6 +639,48 @@ TEST(DiskShapeCases, PlaneSectionsDecideMeetings) {
   checkPlaneSectionCases<float>();
 }
 
+// A disk that crosses a box's face or edge: the distance is 0 and the common
+// point lies on the disk and in the box. The box 2 x 2 x 2 at the origin:
+//  * the disk r = 1 at (0, 0, 1.5), tilted 60 degrees about x, reaches
+//    z = 1.5 - sin 60 = 0.63 < 1: it cuts the plane z = 1 along the chord
+//    0.5 / sin 60 = 0.58 from its centre, |y| = 0.29, |x| <= 0.82, within the
+//    face;
+//  * the disk r = 0.5 at (1.1, 1.1, 0), normal (1, 1, 1) / sqrt 3, holds the
+//    point (1, 1, 0.2) of the edge x = y = 1 (0.24 from its centre), while its
+//    point nearest the box, (1.07, 1.07, 0.07), lies outside two slabs.
+template <typename S>
+void checkDiskThroughBoxFaceAndEdge() {
+  using Vector = fcl::Vector3<S>;
+  const double tolerance = std::is_same<S, float>::value ? 1e-5 : kExact;
+  const fcl::Box<S> box(2, 2, 2);
+  const fcl::Transform3<S> identity = fcl::Transform3<S>::Identity();
+  const double tilt = M_PI / 3;
+  struct Case {
+    double r;
+    Vector3d centre, normal;
+    const char* what;
+  };
+  for (const Case& c : {Case{1.0, Vector3d(0, 0, 1.5), Vector3d(0, -std::sin(tilt), std::cos(tilt)), "face"},
+                        Case{0.5, Vector3d(1.1, 1.1, 0), Vector3d(1, 1, 1), "edge"}}) {
+    const fcl::Transform3<S> X_WD = at(c.centre, c.normal).template cast<S>();
+    const auto result = fcl_disk::diskShapeDistance(S(c.r), X_WD, box, identity);
+    EXPECT_EQ(result.distance, S(0)) << c.what;
+    EXPECT_NEAR((result.p_W_disk - result.p_W_shape).norm(), 0.0, tolerance) << c.what;
+    const Vector on_disk = X_WD.inverse() * result.p_W_disk;
+    EXPECT_NEAR(on_disk.z(), 0.0, tolerance) << c.what;
+    EXPECT_LE(on_disk.template head<2>().norm(), c.r + tolerance) << c.what;
+    EXPECT_LE(result.p_W_shape.cwiseAbs().maxCoeff(), 1.0 + tolerance) << c.what;
+    EXPECT_TRUE(fcl_disk::diskShapeIntersect(S(c.r), X_WD, box, identity,
+                                             static_cast<fcl_disk::DiskContact<S>*>(nullptr)))
+        << c.what;
+  }
+}
+
+TEST(DiskShapeCases, DiskThroughABoxFaceOrEdge) {
+  checkDiskThroughBoxFaceAndEdge<double>();
+  checkDiskThroughBoxFaceAndEdge<float>();
+}
+
 // A box corner or a triangle vertex a hair below the disk's plane, a hair
 // outside its rim: the plane's section is three points within rounding of one
 // another, whose orientations about the centre are rounding noise and must not
