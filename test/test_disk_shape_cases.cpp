@@ -647,7 +647,8 @@ TEST(DiskShapeCases, PlaneSectionsDecideMeetings) {
 //    face;
 //  * the disk r = 0.5 at (1.1, 1.1, 0), normal (1, 1, 1) / sqrt 3, holds the
 //    point (1, 1, 0.2) of the edge x = y = 1 (0.24 from its centre), while its
-//    point nearest the box, (1.07, 1.07, 0.07), lies outside two slabs.
+//    point nearest (1, 1, 0), the box's point nearest its centre, is
+//    (1.07, 1.07, 0.07), outside two slabs: the edge is the feature named.
 template <typename S>
 void checkDiskThroughBoxFaceAndEdge() {
   using Vector = fcl::Vector3<S>;
