@@ -72,6 +72,12 @@
 // checked poses in contact), exact_min_mm and exact_median_mm (the disk's exact
 // clearance on the checked poses: what the paths actually are).
 //
+// Instruction counts: `bench_environment --calls QUERY/SCENE` (e.g. distance/mesh_obbrss)
+// runs the disk's queries on the whole flight (800 poses) kCallPasses times, with no
+// timing and no check, and prints the sum of the answers. Under callgrind, the inclusive
+// count of the query's entry (e.g. fcl_disk's mesh distance) over kCallPasses * 800 is
+// its instructions per query; the environment is built before, once.
+//
 // Run: bench_environment --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
 //          --benchmark_out=environment.json --benchmark_out_format=json
 //      python3 bench/environment_plot.py environment.json docs/environment.png
@@ -130,6 +136,7 @@ constexpr double kDiskRadius = 0.12;   ///< a 10-inch rotor
 constexpr int kPosesPerPath = 200;
 constexpr int kCheckStride = 2;        ///< brute-force check on every 2nd pose
 constexpr double kCheckTolerance = 1e-12;
+constexpr int kCallPasses = 5;         ///< sweeps of the flight in --calls
 
 // mesh: terrain over [-1, 1]^2.
 constexpr double kTerrainHalfSide = 1.0;
@@ -841,12 +848,40 @@ void describeScenes() {
                octree.bounding_radius);
 }
 
+/// --calls QUERY/SCENE: the disk's queries on the whole flight, kCallPasses sweeps.
+int runCalls(const std::string& which) {
+  for (Query query : {Query::distance, Query::collide}) {
+    for (Scene scene : {Scene::mesh_obbrss, Scene::mesh_rss, Scene::mesh_obb, Scene::mesh_aabb,
+                        Scene::octree}) {
+      if (which != std::string(name(query)) + "/" + name(scene)) continue;
+      const fcl::CollisionObjectd& environment = environmentObject(scene);
+      const auto shape = movingShape(Variant::disk);
+      std::vector<std::unique_ptr<fcl::CollisionObjectd>> movers;
+      for (const fcl::Transform3d& X : flightPath(envOf(scene), PathKind::all))
+        movers.push_back(std::make_unique<fcl::CollisionObjectd>(shape, X));
+      double sum = 0.0;
+      for (int pass = 0; pass < kCallPasses; ++pass) {
+        for (const auto& mover : movers) sum += runQuery(query, *mover, environment);
+      }
+      std::printf("%zu queries, sum of answers %.17g\n", movers.size() * kCallPasses, sum);
+      return 0;
+    }
+  }
+  std::fprintf(stderr, "--calls takes QUERY/SCENE: distance or collide, and one of mesh_obbrss, "
+                       "mesh_rss, mesh_obb, mesh_aabb, octree\n");
+  return 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Our own flag, removed before Google Benchmark sees the arguments.
+  // Our own flags, removed before Google Benchmark sees the arguments.
   int kept = 1;
   for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--calls") == 0 && i + 1 < argc) {
+      fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
+      return runCalls(argv[i + 1]);
+    }
     if (std::strcmp(argv[i], "--keep_failed_timings") == 0) {
       g_keep_failed_timings = true;
     } else {
