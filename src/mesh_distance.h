@@ -60,9 +60,11 @@ VolumeBound volumeBound(const DiskInShape& disk, const AlignedVolume& volume) {
 }
 template <typename S>
 VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {
-  const OrientedBox box{obb.To.template cast<double>(), obb.axis.template cast<double>(),
-                        obb.extent.template cast<double>()};
-  return {diskBoxLowerBound(disk, box), boxBoundMagnitude(box.o, box.e)};
+  // Read in place: for S = double the casts are the members themselves.
+  const auto& o = obb.To.template cast<double>();
+  const auto& e = obb.extent.template cast<double>();
+  return {diskBoxLowerBound(disk, o, obb.axis.template cast<double>().transpose(), e),
+          boxBoundMagnitude(o, e)};
 }
 /// An RSS: the rectangle To + [0, l0] axis_0 + [0, l1] axis_1 swept by a
 /// sphere of radius r: the rectangle's bound (a box of zero thickness) less r.
