@@ -4,12 +4,12 @@
 //
 // FCL's traversal (OcTreeSolver::OcTreeShapeIntersectRecurse) with its rules
 // kept and its overlap test replaced: the same cells (getRootBV,
-// computeChildBV), visited in the same order (depth first, children 0..7);
-// an inner cell's subtree entered only if that cell is neither free nor
-// uncertain and the disk is neither, a leaf tested only if it is occupied and
-// the disk is too; a contact per leaf the disk meets (the certified disk-box
-// intersection, src/leaf_solvers.h), while there is room; stop once the
-// request is satisfied. FCL tests the disk's bounding square, as an OBB,
+// computeChildBV: src/octree_cells.h), visited in the same order (depth
+// first, children 0..7); an inner cell's subtree entered only if that cell
+// is neither free nor uncertain and the disk is neither, a leaf tested only if
+// it is occupied and the disk is too; a contact per leaf the disk meets (the
+// certified disk-box intersection, src/leaf_solvers.h), while there is room;
+// stop once the request is satisfied. FCL tests the disk's bounding square, as an OBB,
 // against each cell's box (15 axes); here a lower bound on the distance from
 // the disk to the cell prunes it (diskAlignedBoxSeparation: the gaps along O's
 // axes and the disk's normal, with the disk's exact extents) when it exceeds
@@ -34,6 +34,7 @@
 #include "environment_bounds.h"
 #include "leaf_contact.h"
 #include "leaf_solvers.h"
+#include "octree_cells.h"
 
 namespace fcl_disk {
 namespace internal {
@@ -58,7 +59,7 @@ class DiskOcTreeCollision {
 
   /// Adds the contacts to `result` (frame O).
   void run() {
-    const fcl::AABB<S> root_cell = tree_.getRootBV();
+    const OcTreeCell<S> root_cell = rootCell(tree_);
     if (tree_.getRoot() == nullptr || !mayMeet(root_cell)) return;
     visit(tree_.getRoot(), root_cell);
   }
@@ -72,7 +73,7 @@ class DiskOcTreeCollision {
   /// touching tolerance of a leaf inside it: no leaf there has a scene larger
   /// than r + 2 |h| + |c - o| (|.| <= the 1-norm), nor a touching tolerance
   /// larger than kShapeTouchingTolerance of that.
-  bool mayMeet(const fcl::AABB<S>& cell) const {
+  bool mayMeet(const OcTreeCell<S>& cell) const {
     const AlignedBox box = alignedBoxOf(cell);
     const Vec3 &o = box.o, &h = box.e;
     const double tolerance =
@@ -83,21 +84,20 @@ class DiskOcTreeCollision {
 
   /// FCL's recursion on a cell the disk may meet; true once the request is
   /// satisfied.
-  bool visit(const Node* node, const fcl::AABB<S>& cell) {
+  bool visit(const Node* node, const OcTreeCell<S>& cell) {
     if (!tree_.nodeHasChildren(node)) {
       return tree_.isNodeOccupied(node) && disk_occupied_ && testLeaf(node, cell);
     }
     if (tree_.isNodeFree(node) || tree_.isNodeUncertain(node) || !disk_enterable_) return false;
     for (unsigned int i = 0; i < 8; ++i) {
       if (!tree_.nodeChildExists(node, i)) continue;
-      fcl::AABB<S> child;
-      fcl::computeChildBV(cell, i, child);
+      const OcTreeCell<S> child = childCell(cell, i);
       if (mayMeet(child) && visit(tree_.getNodeChild(node, i), child)) return true;
     }
     return false;
   }
 
-  bool testLeaf(const Node* node, const fcl::AABB<S>& cell) {
+  bool testLeaf(const Node* node, const OcTreeCell<S>& cell) {
     const AlignedBox box = alignedBoxOf(cell);
     const Vec3 &o = box.o, &h = box.e;
     const DiskInShape in_cell{disk_.c - o, disk_.u, disk_.v, disk_.n, disk_.r};

@@ -8,10 +8,12 @@
 // which answers exactly for many cells, the others running the certified
 // disk-box solver, src/leaf_solvers.h, when popped), popped until the least
 // bound cannot beat the best distance (FCL's stop rule with the request's
-// rel_err and abs_err). Which cells count is FCL's (OcTreeSolver::
-// OcTreeShapeDistanceRecurse): a leaf if occupied, an inner cell's subtree
-// only if that cell is occupied (octomap keeps an inner cell's occupancy the
-// largest of its children's); the cells are FCL's (getRootBV, computeChildBV).
+// rel_err and abs_err); the nearest child of the cell just opened is opened
+// next without passing through the queue when nothing queued is nearer.
+// Which cells count is FCL's (OcTreeSolver::OcTreeShapeDistanceRecurse): a
+// leaf if occupied, an inner cell's subtree only if that cell is occupied
+// (octomap keeps an inner cell's occupancy the largest of its children's);
+// the cells are FCL's (getRootBV, computeChildBV: src/octree_cells.h).
 //
 // Frame, units: O and its lengths; the disk as a DiskInShape in O. Guarantee:
 // the least certified disk-cell distance over the cells counted, less at most
@@ -32,6 +34,7 @@
 #include "environment_bounds.h"
 #include "leaf_solvers.h"
 #include "mesh_distance.h"  // cannotImprove
+#include "octree_cells.h"
 
 namespace fcl_disk {
 namespace internal {
@@ -57,7 +60,7 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
   struct Entry {
     double bound;
     const Node* node;
-    fcl::AABB<S> cell;
+    OcTreeCell<S> cell;
     bool operator>(const Entry& other) const { return bound > other.bound; }
   };
   thread_local std::vector<Entry> scratch;
@@ -74,37 +77,48 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
       answer.p_cell = p_cell;
     }
   };
-  const auto enqueue = [&](const Node* node, const fcl::AABB<S>& cell) {
+  // The bound of a cell worth opening, or -1 (free, pruned, or a leaf settled
+  // here).
+  const auto evaluate = [&](const Node* node, const OcTreeCell<S>& cell) -> double {
+    if (!tree.isNodeOccupied(node)) return -1.0;
     const AlignedBox box = alignedBoxOf(cell);
     const Vec3 &centre = box.o, &half = box.e;
     double bound;
     if (!tree.nodeHasChildren(node)) {
-      if (!tree.isNodeOccupied(node)) return;
       const LeafToDisk leaf =
           alignedBoxToDisk(disk, centre, half, disk.r + half.norm() + (disk.c - centre).norm(),
                            answer.distance);
       if (leaf.exact) {
         consider(node, leaf.p_disk, leaf.p_leaf, leaf.distance);
-        return;
+        return -1.0;
       }
       bound = leaf.distance;
     } else {
-      if (!tree.isNodeOccupied(node)) return;
       bound = diskAlignedBoxLowerBound(disk, centre, half);
     }
     bound -= pad * (disk_magnitude + boxBoundMagnitude(centre, half));
     if (!(bound > 0.0)) bound = 0.0;  // NaN cells are searched, never pruned
-    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return;
-    queue.push_back(Entry{bound, node, cell});
+    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
+    return bound;
+  };
+  const auto push = [&](const Entry& entry) {
+    queue.push_back(entry);
     std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
   };
 
-  enqueue(root, tree.getRootBV());
-  while (!queue.empty()) {
-    const Entry next = queue.front();
+  // The cell to open next: the queue's nearest, or the nearest child of the
+  // cell just opened when nothing queued is nearer (as the mesh traversal).
+  const OcTreeCell<S> root_cell = rootCell(tree);
+  Entry next{evaluate(root, root_cell), root, root_cell};
+  bool have_next = next.bound >= 0.0;
+  while (have_next || !queue.empty()) {
+    if (!have_next) {
+      next = queue.front();
+      std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
+      queue.pop_back();
+    }
+    have_next = false;
     if (cannotImprove(next.bound, answer.distance, rel_err, abs_err)) break;
-    std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
-    queue.pop_back();
     if (!tree.nodeHasChildren(next.node)) {
       const AlignedBox box = alignedBoxOf(next.cell);
       const Vec3 &centre = box.o, &half = box.e;
@@ -112,11 +126,31 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
           solveDiskBox(DiskInShape{disk.c - centre, disk.u, disk.v, disk.n, disk.r}, half);
       consider(next.node, solution.p + centre, solution.q + centre, solution.distance);
     } else {
+      // Children in FCL's order; the nearest worth opening is held back.
+      Entry nearest{-1.0, nullptr, {}};
       for (unsigned int i = 0; i < 8; ++i) {
         if (!tree.nodeChildExists(next.node, i)) continue;
-        fcl::AABB<S> child;
-        fcl::computeChildBV(next.cell, i, child);
-        enqueue(tree.getNodeChild(next.node, i), child);
+        const Node* child = tree.getNodeChild(next.node, i);
+        const OcTreeCell<S> cell = childCell(next.cell, i);
+        const double bound = evaluate(child, cell);
+        if (!(bound >= 0.0)) continue;
+        const Entry entry{bound, child, cell};
+        if (nearest.bound < 0.0) {
+          nearest = entry;
+        } else if (bound < nearest.bound) {
+          push(nearest);
+          nearest = entry;
+        } else {
+          push(entry);
+        }
+      }
+      if (nearest.bound >= 0.0) {
+        if (queue.empty() || nearest.bound <= queue.front().bound) {
+          next = nearest;
+          have_next = true;
+        } else {
+          push(nearest);
+        }
       }
     }
     if (answer.distance <= 0.0) break;  // an overlap: nothing is closer
