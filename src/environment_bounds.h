@@ -49,15 +49,8 @@ namespace internal {
 /// the traversals scale the pad by that type's epsilon instead.
 constexpr double kEnvironmentBoundPadUlps = 64.0;
 
-/// An oriented box in the environment's frame: centre o, orthonormal axes (the
-/// columns of `axes`), half-extents e >= 0.
-struct OrientedBox {
-  Vec3 o;
-  Mat3 axes;
-  Vec3 e;
-};
-
-/// A lower bound on dist(box, disk), unpadded: the largest of
+/// A lower bound on dist(box, disk), unpadded, for the box with centre o,
+/// orthonormal axes A_k and half-extents e_k >= 0: the largest of
 ///  * (1), with a_min from the box's extent along n, and rho_min >= rho(o)
 ///    minus the box's extent along the in-plane direction from o's foot
 ///    towards the axis (the box's projection is the zonogon with generators
@@ -96,9 +89,6 @@ double diskBoxLowerBound(const DiskInShape& disk, const Vec3& o, const Rotation&
   return std::max({std::sqrt(plane_and_axis_squared), ball, along});
 }
 
-inline double diskBoxLowerBound(const DiskInShape& disk, const OrientedBox& box) {
-  return diskBoxLowerBound(disk, box.o, box.axes.transpose(), box.e);
-}
 inline double diskAlignedBoxLowerBound(const DiskInShape& disk, const Vec3& o, const Vec3& e) {
   return diskBoxLowerBound(disk, o, Mat3::Identity(), e);
 }

@@ -70,13 +70,12 @@ VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {
 /// sphere of radius r: the rectangle's bound (a box of zero thickness) less r.
 template <typename S>
 VolumeBound volumeBound(const DiskInShape& disk, const fcl::RSS<S>& rss) {
-  const Mat3 axes = rss.axis.template cast<double>();
+  const auto& axes = rss.axis.template cast<double>();
   const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]);
-  const OrientedBox rectangle{
-      rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1), axes,
-      Vec3(half0, half1, 0.0)};
-  return {diskBoxLowerBound(disk, rectangle) - double(rss.r),
-          boxBoundMagnitude(rectangle.o, rectangle.e) + double(rss.r)};
+  const Vec3 o = rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1);
+  const Vec3 e(half0, half1, 0.0);
+  return {diskBoxLowerBound(disk, o, axes.transpose(), e) - double(rss.r),
+          boxBoundMagnitude(o, e) + double(rss.r)};
 }
 template <typename S>
 VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBBRSS<S>& obbrss) {
