@@ -76,10 +76,13 @@ class DiskOcTreeCollision {
   bool mayMeet(const OcTreeCell<S>& cell) const {
     const AlignedBox box = alignedBoxOf(cell);
     const Vec3 &o = box.o, &h = box.e;
+    const double separation = diskAlignedBoxSeparation(disk_, disk_extents_, o, h);
+    // The tolerance is positive: most cells near the disk need none.
+    if (!(separation > 0.0)) return true;  // NaN: searched
     const double tolerance =
         kShapeTouchingTolerance * (disk_.r + 2.0 * h.sum() + (o - disk_.c).cwiseAbs().sum()) +
         kPad * (disk_magnitude_ + boxBoundMagnitude(o, h));
-    return !(diskAlignedBoxSeparation(disk_, disk_extents_, o, h) > tolerance);  // NaN: searched
+    return !(separation > tolerance);
   }
 
   /// FCL's recursion on a cell the disk may meet; true once the request is
