@@ -39,6 +39,7 @@
 #include <utility>
 #include <vector>
 
+#include "best_first_search.h"
 #include "environment_bounds.h"
 #include "leaf_solvers.h"
 
@@ -105,13 +106,6 @@ void prefetchChildren(const fcl::BVHModel<BV>& model, const fcl::BVNodeBase& nod
   }
 }
 
-/// FCL's stop rule for distance traversals (MeshShapeDistanceTraversalNode::
-/// canStop): nothing with lower bound `bound` can improve `best` by more than
-/// the request's tolerances.
-inline bool cannotImprove(double bound, double best, double rel_err, double abs_err) {
-  return bound >= best - abs_err && bound * (1 + rel_err) >= best;
-}
-
 struct MeshDistanceAnswer {
   double distance = std::numeric_limits<double>::infinity();
   int triangle = -1;  ///< -1: nothing closer than the starting best
@@ -145,11 +139,16 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
     }
   };
 
-  // (bound, node); a leaf is queued only when its triangle needs the solver.
-  using Entry = std::pair<double, int>;
+  // A node and its bound; a leaf is queued only when its triangle needs the
+  // solver. Equal bounds: the lower node first.
+  struct Entry {
+    double bound;
+    int node;
+    bool operator>(const Entry& other) const {
+      return bound > other.bound || (bound == other.bound && node > other.node);
+    }
+  };
   thread_local std::vector<Entry> scratch;
-  std::vector<Entry>& queue = scratch;
-  queue.clear();
   const double disk_magnitude = diskBoundMagnitude(disk);
   const double disk_scale = disk.r + disk.c.norm();  // the leaf solver's share
   // The bound of a node worth opening, or -1 (pruned, or a leaf settled here).
@@ -180,49 +179,27 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
     if (!isLeaf(node)) prefetchChildren(model, node);
     return bound;
   };
-  const auto push = [&](const Entry& entry) {
-    queue.push_back(entry);
-    std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
-  };
-
-  // The node to open next: the queue's nearest, or the nearer child of the
-  // node just opened when nothing queued is nearer (then the queue cannot
-  // beat the best distance when that child cannot).
-  Entry next(evaluate(0), 0);
-  bool have_next = next.first >= 0.0;
-  while (have_next || !queue.empty()) {
-    if (!have_next) {
-      next = queue.front();
-      std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
-      queue.pop_back();
-    }
-    have_next = false;
-    if (cannotImprove(next.first, answer.distance, rel_err, abs_err)) break;
-    const auto& node = model.getBV(next.second);
-    if (isLeaf(node)) {
-      const int triangle = primitiveId(node);
-      const fcl::Triangle& corners = model.tri_indices[triangle];
-      const DiskShapeSolution solution =
-          solveDiskTriangle(disk, vertex(corners[0]), vertex(corners[1]), vertex(corners[2]));
-      consider(triangle, solution.p, solution.q, solution.distance);
-    } else {
-      Entry first(evaluate(node.first_child), node.first_child);
-      Entry second(evaluate(node.first_child + 1), node.first_child + 1);
-      if (second.first >= 0.0 && !(first.first >= 0.0 && first.first <= second.first)) {
-        std::swap(first, second);  // `first` the nearer one worth opening
-      }
-      if (second.first >= 0.0) push(second);
-      if (first.first >= 0.0) {
-        if (queue.empty() || first.first <= queue.front().first) {
-          next = first;
-          have_next = true;
-        } else {
-          push(first);
+  const double root_bound = evaluate(0);
+  if (!(root_bound >= 0.0)) return answer;
+  bestFirstSearch(
+      scratch, Entry{root_bound, 0},
+      [&](const Entry& entry, auto&& offer) {
+        const auto& node = model.getBV(entry.node);
+        if (isLeaf(node)) {
+          const int triangle = primitiveId(node);
+          const fcl::Triangle& corners = model.tri_indices[triangle];
+          const DiskShapeSolution solution = solveDiskTriangle(
+              disk, vertex(corners[0]), vertex(corners[1]), vertex(corners[2]));
+          consider(triangle, solution.p, solution.q, solution.distance);
+          return;
         }
-      }
-    }
-    if (answer.distance <= 0.0) break;  // an overlap: nothing is closer
-  }
+        for (const int child : {node.first_child, node.first_child + 1}) {
+          const double bound = evaluate(child);
+          if (bound >= 0.0) offer(Entry{bound, child});
+        }
+      },
+      [&](double bound) { return cannotImprove(bound, answer.distance, rel_err, abs_err); },
+      [&] { return answer.distance <= 0.0; });  // an overlap: nothing is closer
   return answer;
 }
 

@@ -31,9 +31,9 @@
 #include <limits>
 #include <vector>
 
+#include "best_first_search.h"
 #include "environment_bounds.h"
 #include "leaf_solvers.h"
-#include "mesh_distance.h"  // cannotImprove
 #include "octree_cells.h"
 
 namespace fcl_disk {
@@ -64,8 +64,6 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
     bool operator>(const Entry& other) const { return bound > other.bound; }
   };
   thread_local std::vector<Entry> scratch;
-  std::vector<Entry>& queue = scratch;
-  queue.clear();
   const double disk_magnitude = diskBoundMagnitude(disk);
   const auto consider = [&](const Node* node, const Vec3& p_disk, const Vec3& p_cell,
                             double distance) {
@@ -101,60 +99,30 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
     if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
     return bound;
   };
-  const auto push = [&](const Entry& entry) {
-    queue.push_back(entry);
-    std::push_heap(queue.begin(), queue.end(), std::greater<Entry>());
-  };
-
-  // The cell to open next: the queue's nearest, or the nearest child of the
-  // cell just opened when nothing queued is nearer (as the mesh traversal).
   const OcTreeCell<S> root_cell = rootCell(tree);
-  Entry next{evaluate(root, root_cell), root, root_cell};
-  bool have_next = next.bound >= 0.0;
-  while (have_next || !queue.empty()) {
-    if (!have_next) {
-      next = queue.front();
-      std::pop_heap(queue.begin(), queue.end(), std::greater<Entry>());
-      queue.pop_back();
-    }
-    have_next = false;
-    if (cannotImprove(next.bound, answer.distance, rel_err, abs_err)) break;
-    if (!tree.nodeHasChildren(next.node)) {
-      const AlignedBox box = alignedBoxOf(next.cell);
-      const Vec3 &centre = box.o, &half = box.e;
-      const DiskShapeSolution solution =
-          solveDiskBox(DiskInShape{disk.c - centre, disk.u, disk.v, disk.n, disk.r}, half);
-      consider(next.node, solution.p + centre, solution.q + centre, solution.distance);
-    } else {
-      // Children in FCL's order; the nearest worth opening is held back.
-      Entry nearest{-1.0, nullptr, {}};
-      for (unsigned int i = 0; i < 8; ++i) {
-        if (!tree.nodeChildExists(next.node, i)) continue;
-        const Node* child = tree.getNodeChild(next.node, i);
-        const OcTreeCell<S> cell = childCell(next.cell, i);
-        const double bound = evaluate(child, cell);
-        if (!(bound >= 0.0)) continue;
-        const Entry entry{bound, child, cell};
-        if (nearest.bound < 0.0) {
-          nearest = entry;
-        } else if (bound < nearest.bound) {
-          push(nearest);
-          nearest = entry;
-        } else {
-          push(entry);
+  const double root_bound = evaluate(root, root_cell);
+  if (!(root_bound >= 0.0)) return answer;
+  bestFirstSearch(
+      scratch, Entry{root_bound, root, root_cell},
+      [&](const Entry& entry, auto&& offer) {
+        if (!tree.nodeHasChildren(entry.node)) {
+          const AlignedBox box = alignedBoxOf(entry.cell);
+          const Vec3 &centre = box.o, &half = box.e;
+          const DiskShapeSolution solution =
+              solveDiskBox(DiskInShape{disk.c - centre, disk.u, disk.v, disk.n, disk.r}, half);
+          consider(entry.node, solution.p + centre, solution.q + centre, solution.distance);
+          return;
         }
-      }
-      if (nearest.bound >= 0.0) {
-        if (queue.empty() || nearest.bound <= queue.front().bound) {
-          next = nearest;
-          have_next = true;
-        } else {
-          push(nearest);
+        for (unsigned int i = 0; i < 8; ++i) {  // FCL's order
+          if (!tree.nodeChildExists(entry.node, i)) continue;
+          const Node* child = tree.getNodeChild(entry.node, i);
+          const OcTreeCell<S> cell = childCell(entry.cell, i);
+          const double bound = evaluate(child, cell);
+          if (bound >= 0.0) offer(Entry{bound, child, cell});
         }
-      }
-    }
-    if (answer.distance <= 0.0) break;  // an overlap: nothing is closer
-  }
+      },
+      [&](double bound) { return cannotImprove(bound, answer.distance, rel_err, abs_err); },
+      [&] { return answer.distance <= 0.0; });  // an overlap: nothing is closer
   return answer;
 }
 
