@@ -118,11 +118,14 @@ class DiskMeshCollision {
   bool visit(int node_index) {
     const auto& node = model_.getBV(node_index);
     const BoxSeparation volume = volumeSeparation(disk_, disk_extents_, node.bv);
-    // A triangle inside has vertices within volume.reach (1-norm) of M's
+    // The tolerance is positive: most volumes near the disk need none. A
+    // triangle inside has vertices within volume.reach (1-norm) of M's
     // origin: its scene, r + |vertex| + |c|, is at most disk_reach_ + that.
-    const double tolerance = kShapeTouchingTolerance * (disk_reach_ + volume.reach) +
-                             kPad * (disk_magnitude_ + volume.magnitude);
-    if (volume.separation > tolerance) return false;  // NaN volumes are searched
+    if (volume.separation > 0.0) {  // NaN volumes are searched
+      const double tolerance = kShapeTouchingTolerance * (disk_reach_ + volume.reach) +
+                               kPad * (disk_magnitude_ + volume.magnitude);
+      if (volume.separation > tolerance) return false;
+    }
     if (isLeaf(node)) return testLeaf(primitiveId(node));
     if (visit(node.first_child)) return true;
     return visit(node.first_child + 1);
