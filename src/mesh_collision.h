@@ -35,7 +35,7 @@ namespace internal {
 
 /// A node's volume as a box for diskBoxSeparation: the box itself (AABB, OBB,
 /// and the OBB of OBBRSS and kIOS), a k-DOP's first three slab pairs (FCL's
-/// coordinate axes), an RSS's rectangle grown by its radius on every side.
+/// coordinate axes), an RSS's rectangle, the gaps less its radius.
 /// With the separation: the volume's magnitude (boxBoundMagnitude, for the
 /// rounding pad) and `reach`, a bound on the 1-norm of its points.
 struct BoxSeparation {
@@ -66,14 +66,18 @@ BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3&, const fcl::
   return orientedSeparation(disk, obb.To.template cast<double>(), obb.axis.template cast<double>(),
                             obb.extent.template cast<double>());
 }
+/// An RSS, the rectangle swept by a ball of radius r: along every axis its
+/// support is the rectangle's plus r, so the gaps are the rectangle's less r.
+/// Its magnitude and reach are those of the rectangle grown by r on every side.
 template <typename S>
 BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3&, const fcl::RSS<S>& rss) {
-  const Mat3 axes = rss.axis.template cast<double>();
+  const auto& axes = rss.axis.template cast<double>();
   const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]);
   const double radius = double(rss.r);
-  return orientedSeparation(
-      disk, rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1), axes,
-      Vec3(half0 + radius, half1 + radius, radius));
+  const Vec3 o = rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1);
+  const Vec3 grown(half0 + radius, half1 + radius, radius);
+  return {diskBoxSeparation(disk, o, axes.transpose(), Vec3(half0, half1, 0.0)) - radius,
+          boxBoundMagnitude(o, grown), o.cwiseAbs().sum() + 3.0 * grown.sum()};
 }
 template <typename S>
 BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,
