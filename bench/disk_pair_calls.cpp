@@ -9,10 +9,6 @@
 //
 // Instruction counts are not moved by the load of a shared machine, so they
 // compare commits where wall-clock medians cannot.
-//
-// `disk_pair_calls iterations` prints, per family, how many of its first
-// 10000 pairs the exact solver answers with rim iterations and their mean
-// number of Newton iterations (docs/exact_distance.md, section 4, "Start").
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -24,28 +20,10 @@ namespace {
 constexpr int kPairs = 2000;
 constexpr int kPasses = 10;
 constexpr std::uint64_t kSeed = 20240601;
-
-/// The rim-rim pairs of each family and their mean iteration count.
-int printIterations() {
-  using namespace fcl_disk_families;
-  constexpr int kIterationPairs = 10000;
-  for (const Family& family : allFamilies()) {
-    long rim_rim = 0, iterations = 0;
-    for (const auto& c : makeFamily<double>(family, kIterationPairs, kSeed)) {
-      const int k = fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).iterations;
-      rim_rim += k > 0;
-      iterations += k;
-    }
-    std::printf("%-18s rim-rim pairs %5ld of %d, mean iterations %.2f\n", familyName(family),
-                rim_rim, kIterationPairs, rim_rim > 0 ? double(iterations) / double(rim_rim) : 0.0);
-  }
-  return 0;
-}
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace fcl_disk_families;
-  if (argc == 2 && std::strcmp(argv[1], "iterations") == 0) return printIterations();
   const bool known_solver = argc == 3 && (std::strcmp(argv[2], "exact") == 0 ||
                                           std::strcmp(argv[2], "almohamad_selim") == 0);
   const Family* family = nullptr;
@@ -53,8 +31,7 @@ int main(int argc, char** argv) {
     if (argc == 3 && std::string(argv[1]) == familyName(f)) family = &f;
   }
   if (!known_solver || family == nullptr) {
-    std::fprintf(stderr, "usage: %s FAMILY exact|almohamad_selim, or %s iterations\nfamilies:",
-                 argv[0], argv[0]);
+    std::fprintf(stderr, "usage: %s FAMILY exact|almohamad_selim\nfamilies:", argv[0]);
     for (const Family f : allFamilies()) std::fprintf(stderr, " %s", familyName(f));
     std::fprintf(stderr, "\n");
     return 2;

@@ -475,50 +475,25 @@ Vec2 scaledFootOfDisk2(const PairInFrame1& pair) {
               pair.s * pair.c.y() - side_r2 * (R(1, 0) * pair.m.x() + R(1, 1) * pair.m.y()));
 }
 
-/// One step of alternating projections between the rims: disk 1's rim point
-/// p = r1 radial to its nearest point q of disk 2's rim (c plus r2 times the
-/// direction of p - c within plane 2), then to the direction of q's
-/// projection on plane 1. A nearest pair of the rims is a fixed point.
-/// `radial` is returned unchanged where a direction is undefined (p on disk
-/// 2's axis, q on disk 1's); near those the direction is inaccurate, which
-/// costs the iteration steps, never its answer.
-Vec2 alternateTowardsRim2(const PairInFrame1& pair, const Vec2& radial) {
-  const Vec3 d = Vec3(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0) - pair.c;
-  const Vec3 n = pair.R.col(2);
-  const Vec3 in_plane = d - n.dot(d) * n;
-  const double length = in_plane.norm();
-  if (!(length > 0.0)) return radial;
-  const Vec3 q = pair.c + (pair.r2 / length) * in_plane;
-  const Vec2 q_xy(q.x(), q.y());
-  const double q_length = q_xy.norm();
-  return q_length > 0.0 ? Vec2(q_xy.x() / q_length, q_xy.y() / q_length) : radial;
-}
-
 /// Where the rim iteration starts (only its speed depends on it; measured in
 /// docs/exact_distance.md, section 4): disk 1's rim point towards where disk 2
 /// comes nearest plane 1, projected: the point of disk 2's chord on plane 1
 /// nearest c1 when disk 2 crosses plane 1, else disk 2's rim point extreme
-/// towards plane 1; then one step of alternating projections between the rims
-/// (alternateTowardsRim2). Towards c2's projection instead, without that step,
-/// for planes within kTiltedStart (sine) of parallel, where the point is
-/// ill-conditioned (it divides by s); and towards c2's projection, then the
-/// step, when disk 1 crosses plane 2 but disk 2 does not cross plane 1 (there
-/// that start is better).
+/// towards plane 1. Towards c2's projection instead when disk 1 crosses plane 2
+/// but disk 2 does not cross plane 1 (there that start is better), and for
+/// planes within kTiltedStart (sine) of parallel, where the point is
+/// ill-conditioned (it divides by s).
 Vec2 rimStartDirection(const PairInFrame1& pair) {
   const Vec2 towards_c2(pair.c.x(), pair.c.y());
   if (!(pair.s > kTiltedStart)) return directionOf(towards_c2);
-  Vec2 start;
   if (pair.disk2ClearanceOfPlane1() <= 0.0) {  // disk 2 crosses plane 1
     const internal::ChordOnPlane1 chord = internal::chordOfDisk2OnPlane1(pair);
     const double tau =
         std::clamp(chord.tau_nearest_c1, -chord.half_length, chord.half_length);
-    start = directionOf(Vec2(chord.X0.x() + tau * chord.T.x(), chord.X0.y() + tau * chord.T.y()));
-  } else if (pair.disk1ClearanceOfPlane2() <= 0.0) {
-    start = directionOf(towards_c2);
-  } else {
-    start = directionOf(scaledFootOfDisk2(pair));  // towards rimPointTowardsPlane1()
+    return directionOf(Vec2(chord.X0.x() + tau * chord.T.x(), chord.X0.y() + tau * chord.T.y()));
   }
-  return alternateTowardsRim2(pair, start);
+  if (pair.disk1ClearanceOfPlane2() <= 0.0) return directionOf(towards_c2);
+  return directionOf(scaledFootOfDisk2(pair));  // towards rimPointTowardsPlane1()
 }
 
 /// Plain Newton along disk 1's rim, the path nearly every rim-rim query
