@@ -48,11 +48,15 @@ inline BoxSeparation alignedSeparation(const DiskInShape& disk, const Vec3& disk
   return {diskAlignedBoxSeparation(disk, disk_extents, o, e), boxBoundMagnitude(o, e),
           o.cwiseAbs().sum() + e.sum()};
 }
+/// `separation` with the magnitude and reach of the oriented box of centre o
+/// and half-extents e: its points lie within |e|_1 of o along each of the
+/// frame's axes.
+inline BoxSeparation withOrientedBox(double separation, const Vec3& o, const Vec3& e) {
+  return {separation, boxBoundMagnitude(o, e), o.cwiseAbs().sum() + 3.0 * e.sum()};
+}
 inline BoxSeparation orientedSeparation(const DiskInShape& disk, const Vec3& o, const Mat3& axes,
                                         const Vec3& e) {
-  // The box's points lie within |e|_1 of o along each of the frame's axes.
-  return {diskBoxSeparation(disk, o, axes.transpose(), e), boxBoundMagnitude(o, e),
-          o.cwiseAbs().sum() + 3.0 * e.sum()};
+  return withOrientedBox(diskBoxSeparation(disk, o, axes.transpose(), e), o, e);
 }
 /// An AABB, and a k-DOP as its first three slab pairs (alignedBoxOf).
 template <typename AlignedVolume>
@@ -75,9 +79,9 @@ BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3&, const fcl::
   const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]);
   const double radius = double(rss.r);
   const Vec3 o = rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1);
-  const Vec3 grown(half0 + radius, half1 + radius, radius);
-  return {diskBoxSeparation(disk, o, axes.transpose(), Vec3(half0, half1, 0.0)) - radius,
-          boxBoundMagnitude(o, grown), o.cwiseAbs().sum() + 3.0 * grown.sum()};
+  return withOrientedBox(diskBoxSeparation(disk, o, axes.transpose(), Vec3(half0, half1, 0.0)) -
+                             radius,
+                         o, Vec3(half0 + radius, half1 + radius, radius));
 }
 template <typename S>
 BoxSeparation volumeSeparation(const DiskInShape& disk, const Vec3& disk_extents,

@@ -34,9 +34,7 @@
 #include <fcl/math/bv/kIOS.h>
 
 #include <algorithm>
-#include <functional>
 #include <limits>
-#include <utility>
 #include <vector>
 
 #include "best_first_search.h"

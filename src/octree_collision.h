@@ -4,18 +4,18 @@
 //
 // FCL's traversal (OcTreeSolver::OcTreeShapeIntersectRecurse) with its rules
 // kept and its overlap test replaced: the same cells (getRootBV,
-// computeChildBV: src/octree_cells.h), visited in the same order (depth
-// first, children 0..7); an inner cell's subtree entered only if that cell
-// is neither free nor uncertain and the disk is neither, a leaf tested only if
-// it is occupied and the disk is too; a contact per leaf the disk meets (the
+// computeChildBV: src/octree_cells.h), visited in the same order (depth first,
+// children 0..7); an inner cell's subtree entered only if that cell is neither
+// free nor uncertain and the disk is neither, a leaf tested only if it is
+// occupied and the disk is too; a contact per leaf the disk meets (the
 // certified disk-box intersection, src/leaf_solvers.h), while there is room;
-// stop once the request is satisfied. FCL tests the disk's bounding square, as an OBB,
-// against each cell's box (15 axes); here a lower bound on the distance from
-// the disk to the cell prunes it (diskAlignedBoxSeparation: the gaps along O's
-// axes and the disk's normal, with the disk's exact extents) when it exceeds
-// the intersection test's touching tolerance for any leaf inside the cell
-// (kShapeTouchingTolerance of that leaf's scene, bounded by the cell's) plus
-// the bounds' rounding pad, so no leaf that intersectDiskBox would call
+// stop once the request is satisfied. FCL tests the disk's bounding square, as
+// an OBB, against each cell's box (15 axes); here a lower bound on the distance
+// from the disk to the cell prunes it (diskAlignedBoxSeparation: the gaps along
+// O's axes and the disk's normal, with the disk's exact extents) when it
+// exceeds the intersection test's touching tolerance for any leaf inside the
+// cell (kShapeTouchingTolerance of that leaf's scene, bounded by the cell's)
+// plus the bounds' rounding pad, so no leaf that intersectDiskBox would call
 // intersecting is ever skipped.
 //
 // Frame, units: O and its lengths; the disk as a DiskInShape in O. Contacts are
