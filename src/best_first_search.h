@@ -11,6 +11,18 @@
 namespace fcl_disk {
 namespace internal {
 
+/// This thread's scratch queue for a search over Entry. Returned from a call
+/// the traversal cannot see into: in a shared library every use of a
+/// thread_local calls __tls_get_addr, and with the variable in the inlined
+/// search the compiler derived its address again on every push and pop
+/// (about 100 calls a query on docs/scenes.md's mesh); the reference it
+/// returns is an ordinary one.
+template <typename Entry>
+[[gnu::noinline]] std::vector<Entry>& scratchQueue() {
+  thread_local std::vector<Entry> queue;
+  return queue;
+}
+
 /// FCL's stop rule for distance traversals (MeshShapeDistanceTraversalNode::
 /// canStop): nothing with lower bound `bound` can improve `best` by more than
 /// the request's tolerances.

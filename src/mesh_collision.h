@@ -28,7 +28,7 @@
 #include "environment_bounds.h"
 #include "leaf_contact.h"
 #include "leaf_solvers.h"
-#include "mesh_distance.h"  // isLeaf, primitiveId
+#include "mesh_distance.h"  // isLeaf, primitiveId, vertexIds
 
 namespace fcl_disk {
 namespace internal {
@@ -141,10 +141,10 @@ class DiskMeshCollision {
 
   bool testLeaf(int triangle) {
     if (!(model_.isOccupied() && disk_geometry_.isOccupied())) return false;
-    const fcl::Triangle& corners = model_.tri_indices[triangle];
-    const Vec3 a = model_.vertices[corners[0]].template cast<double>();
-    const Vec3 b = model_.vertices[corners[1]].template cast<double>();
-    const Vec3 c = model_.vertices[corners[2]].template cast<double>();
+    const auto& ids = vertexIds(model_, triangle);
+    const Vec3 a = model_.vertices[ids[0]].template cast<double>();
+    const Vec3 b = model_.vertices[ids[1]].template cast<double>();
+    const Vec3 c = model_.vertices[ids[2]].template cast<double>();
     return addLeafContact(
         [&](FrameContact* contact) { return intersectDiskTriangle(disk_, a, b, c, contact); },
         Vec3::Zero(), model_, disk_geometry_, triangle, request_, result_);

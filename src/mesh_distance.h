@@ -34,7 +34,9 @@
 #include <fcl/math/bv/kIOS.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "best_first_search.h"
@@ -104,6 +106,17 @@ void prefetchChildren(const fcl::BVHModel<BV>& model, const fcl::BVNodeBase& nod
   }
 }
 
+/// The vertex indices of the model's triangle, read in place: fcl::Triangle's
+/// operator[] is defined out of line in libfcl (a call per index), and the
+/// class is standard-layout with the index array its only member, so its
+/// address is the array's.
+template <typename BV>
+const std::size_t (&vertexIds(const fcl::BVHModel<BV>& model, int triangle))[3] {
+  static_assert(std::is_standard_layout_v<fcl::Triangle> &&
+                sizeof(fcl::Triangle) == sizeof(std::size_t[3]));
+  return *reinterpret_cast<const std::size_t(*)[3]>(&model.tri_indices[triangle]);
+}
+
 struct MeshDistanceAnswer {
   double distance = std::numeric_limits<double>::infinity();
   int triangle = -1;  ///< -1: nothing closer than the starting best
@@ -124,7 +137,7 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
   answer.distance = best;
   if (model.getNumBVs() <= 0) return answer;
 
-  const auto vertex = [&model](int index) -> Vec3 {
+  const auto vertex = [&model](std::size_t index) -> Vec3 {
     return model.vertices[index].template cast<double>();
   };
   const auto consider = [&](int triangle, const Vec3& p_disk, const Vec3& p_triangle,
@@ -146,7 +159,7 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
       return bound > other.bound || (bound == other.bound && node > other.node);
     }
   };
-  thread_local std::vector<Entry> scratch;
+  std::vector<Entry>& scratch = scratchQueue<Entry>();
   const double disk_magnitude = diskBoundMagnitude(disk);
   const double disk_scale = disk.r + disk.c.norm();  // the leaf solver's share
   // The bound of a node worth opening, or -1 (pruned, or a leaf settled here).
@@ -155,8 +168,8 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
     double bound;
     if (isLeaf(node)) {
       const int triangle = primitiveId(node);
-      const fcl::Triangle& corners = model.tri_indices[triangle];
-      const Vec3 p0 = vertex(corners[0]), p1 = vertex(corners[1]), p2 = vertex(corners[2]);
+      const auto& ids = vertexIds(model, triangle);
+      const Vec3 p0 = vertex(ids[0]), p1 = vertex(ids[1]), p2 = vertex(ids[2]);
       const double triangle_radius =
           std::sqrt(std::max({p0.squaredNorm(), p1.squaredNorm(), p2.squaredNorm()}));
       const LeafToDisk leaf =
@@ -185,9 +198,9 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
         const auto& node = model.getBV(entry.node);
         if (isLeaf(node)) {
           const int triangle = primitiveId(node);
-          const fcl::Triangle& corners = model.tri_indices[triangle];
-          const DiskShapeSolution solution = solveDiskTriangle(
-              disk, vertex(corners[0]), vertex(corners[1]), vertex(corners[2]));
+          const auto& ids = vertexIds(model, triangle);
+      const Vec3 p0 = vertex(ids[0]), p1 = vertex(ids[1]), p2 = vertex(ids[2]);
+          const DiskShapeSolution solution = solveDiskTriangle(disk, p0, p1, p2);
           consider(triangle, solution.p, solution.q, solution.distance);
           return;
         }

@@ -62,7 +62,7 @@ OcTreeDistanceAnswer diskOcTreeDistance(const DiskInShape& disk, const fcl::OcTr
     OcTreeCell<S> cell;
     bool operator>(const Entry& other) const { return bound > other.bound; }
   };
-  thread_local std::vector<Entry> scratch;
+  std::vector<Entry>& scratch = scratchQueue<Entry>();
   const double disk_magnitude = diskBoundMagnitude(disk);
   const auto consider = [&](const Node* node, const Vec3& p_disk, const Vec3& p_cell,
                             double distance) {
