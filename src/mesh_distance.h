@@ -151,13 +151,13 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
   };
 
   // A node and its bound; a leaf is queued only when its triangle needs the
-  // solver. Equal bounds: the lower node first.
+  // solver. Ordered by the bound alone (a tie-break on the node costs more
+  // than it orders): equal bounds leave in the heap's order, the same on every
+  // run.
   struct Entry {
     double bound;
     int node;
-    bool operator>(const Entry& other) const {
-      return bound > other.bound || (bound == other.bound && node > other.node);
-    }
+    bool operator>(const Entry& other) const { return bound > other.bound; }
   };
   std::vector<Entry>& scratch = scratchQueue<Entry>();
   const double disk_magnitude = diskBoundMagnitude(disk);
