@@ -4,6 +4,8 @@
 // intersecting, near-touching) through the CollisionObject and the
 // geometry + transform APIs, float and double, both GJK solver types; pairs that
 // fcl_disk forwards to FCL (real cylinders, disks against spheres and boxes);
+// disks against a triangle mesh and an octree (fcl_disk's traversals, whose
+// queues are per-thread scratch), in pairs and in the broadphase scene;
 // and the same while another thread registers: the first Disk or registration
 // call, the same method again and again, or switching methods (each answer is
 // then one of the two methods' serial answers). FCL's tables themselves are
@@ -19,10 +21,13 @@
 // minute on two cores.
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/default_broadphase_callbacks.h>
+#include <fcl/geometry/bvh/BVH_model.h>
+#include <fcl/geometry/octree/octree.h>
 #include <fcl/geometry/shape/box.h>
 #include <fcl/geometry/shape/convex.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/math/bv/OBBRSS.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/detail/distance_func_matrix.h>
 #include <fcl/narrowphase/distance.h>
@@ -39,6 +44,7 @@
 #include <thread>
 #include <vector>
 
+#include "disk_mesh_families.h"
 #include "test_random.h"
 
 namespace {
@@ -65,6 +71,10 @@ constexpr std::size_t kMaxContacts = 4;
 constexpr double kNearTouchingGapMin = 1e-12;
 constexpr double kNearTouchingGapMax = 1e-6;
 constexpr std::uint64_t kSceneSeed = 0xc0'c0'2024;
+// The environments: a height field of 2 * 8^2 triangles over [-1, 1]^2, and an
+// octree of a few occupied blobs (5 cm cells, within ~0.5 of its origin).
+constexpr int kTerrainCells = 8;
+constexpr std::uint64_t kOcTreeSeed = 7;
 
 // ----------------------------------------------------------------------------
 // What a query answered, as bits.
@@ -134,9 +144,10 @@ Fingerprint fingerprintOf(std::size_t returned, const fcl::CollisionResult<S>& r
 // The scene: shapes and poses in double, built once per scalar type.
 
 struct ShapeSpec {
-  enum class Type { disk, cylinder, sphere, box, convex } type;
+  enum class Type { disk, cylinder, sphere, box, convex, mesh, octree } type;
   double a = 0, b = 0, c = 0;  // disk/sphere: radius; cylinder: radius, length; box, convex
-                               // (a box as a Convex, each query's own object): sides
+                               // (a box as a Convex, each query's own object): sides;
+                               // mesh (BVHModel<OBBRSS>), octree: fixed, see kTerrainCells
 };
 
 struct PairSpec {
@@ -208,12 +219,17 @@ ShapeSpec randomOtherShape(Random& random, ShapeSpec::Type type) {
     case ShapeSpec::Type::box:
     case ShapeSpec::Type::convex:
       return {type, random.uniform(0.2, 0.8), random.uniform(0.2, 0.8), random.uniform(0.2, 0.8)};
+    case ShapeSpec::Type::mesh:
+    case ShapeSpec::Type::octree: return {type};
   }
   return {};
 }
 
-/// Pairs that reach FCL's own functions: through fcl_disk's wrapper (cylinder
-/// slots) or not at all. Without disks they can be queried before registration.
+/// Pairs other than disk-disk: with disks, the other shapes' pairs (FCL's own
+/// functions for real cylinders) and fcl_disk's mesh and octree traversals;
+/// without disks, pairs that reach FCL's own functions through fcl_disk's
+/// wrapper (cylinder slots) or not at all, which can be queried before
+/// registration.
 std::vector<PairSpec> otherPairs(Random& random, bool with_disks) {
   using T = ShapeSpec::Type;
   struct Kind {
@@ -227,7 +243,9 @@ std::vector<PairSpec> otherPairs(Random& random, bool with_disks) {
                                      // fcl_disk keeps each thread's last hull: many
                                      // hulls queried in any order on any thread
                                      {"disk-convex", T::disk, T::convex},
-                                     {"disk-cylinder", T::disk, T::cylinder}}
+                                     {"disk-cylinder", T::disk, T::cylinder},
+                                     {"disk-mesh", T::disk, T::mesh},
+                                     {"octree-disk", T::octree, T::disk}}
                  : std::vector<Kind>{{"cylinder-cylinder", T::cylinder, T::cylinder},
                                      {"sphere-cylinder", T::sphere, T::cylinder},
                                      {"cylinder-box", T::cylinder, T::box},
@@ -246,7 +264,8 @@ std::vector<PairSpec> otherPairs(Random& random, bool with_disks) {
 
 std::vector<PlacedShape> broadphaseScene(Random& random) {
   using T = ShapeSpec::Type;
-  constexpr T kTypes[] = {T::disk, T::disk, T::disk, T::disk, T::disk, T::box, T::sphere, T::cylinder};
+  constexpr T kTypes[] = {T::disk, T::disk, T::disk, T::disk, T::disk,
+                          T::box,  T::sphere, T::cylinder, T::mesh};
   std::vector<PlacedShape> scene;
   for (int i = 0; i < kBroadphaseObjects; ++i) {
     scene.push_back({randomOtherShape(random, kTypes[i % std::size(kTypes)]), randomPose(random, 2.5)});
@@ -271,6 +290,22 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeGeometry(const ShapeSpec& shape) 
           4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
       return std::make_shared<fcl::Convex<S>>(vertices, 6, faces);
     }
+    case ShapeSpec::Type::mesh: {
+      namespace families = fcl_disk_test::mesh_families;
+      const families::Mesh terrain = families::terrainMesh(kTerrainCells);
+      std::vector<fcl::Vector3<S>> vertices;
+      for (const Eigen::Vector3d& v : terrain.vertices) vertices.push_back(v.cast<S>());
+      std::vector<fcl::Triangle> triangles;
+      for (const auto& t : terrain.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+      auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<S>>>();
+      model->beginModel();
+      model->addSubModel(vertices, triangles);
+      model->endModel();
+      return model;
+    }
+    case ShapeSpec::Type::octree:
+      return std::make_shared<fcl::OcTree<S>>(
+          fcl_disk_test::mesh_families::blobOcTree(kOcTreeSeed).build());
   }
   return nullptr;
 }
