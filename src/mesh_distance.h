@@ -110,11 +110,12 @@ void prefetchChildren(const fcl::BVHModel<BV>& model, const fcl::BVNodeBase& nod
 /// operator[] is defined out of line in libfcl (a call per index), and the
 /// class is standard-layout with the index array its only member, so its
 /// address is the array's.
+using VertexIds = std::size_t[3];
 template <typename BV>
-const std::size_t (&vertexIds(const fcl::BVHModel<BV>& model, int triangle))[3] {
+const VertexIds& vertexIds(const fcl::BVHModel<BV>& model, int triangle) {
   static_assert(std::is_standard_layout_v<fcl::Triangle> &&
-                sizeof(fcl::Triangle) == sizeof(std::size_t[3]));
-  return *reinterpret_cast<const std::size_t(*)[3]>(&model.tri_indices[triangle]);
+                sizeof(fcl::Triangle) == sizeof(VertexIds));
+  return *reinterpret_cast<const VertexIds*>(&model.tri_indices[triangle]);
 }
 
 struct MeshDistanceAnswer {
@@ -199,8 +200,8 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
         if (isLeaf(node)) {
           const int triangle = primitiveId(node);
           const auto& ids = vertexIds(model, triangle);
-      const Vec3 p0 = vertex(ids[0]), p1 = vertex(ids[1]), p2 = vertex(ids[2]);
-          const DiskShapeSolution solution = solveDiskTriangle(disk, p0, p1, p2);
+          const DiskShapeSolution solution =
+              solveDiskTriangle(disk, vertex(ids[0]), vertex(ids[1]), vertex(ids[2]));
           consider(triangle, solution.p, solution.q, solution.distance);
           return;
         }
