@@ -69,8 +69,10 @@ VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {
 }
 /// An RSS: the rectangle To + [0, l0] axis_0 + [0, l1] axis_1 swept by a
 /// sphere of radius r: the rectangle's bound (a box of zero thickness) less r.
+/// Flattened: GCC kept the box bound out of line here, and inlined it saves
+/// ~40 instructions a volume (7% of a mesh_rss distance query, callgrind).
 template <typename S>
-VolumeBound volumeBound(const DiskInShape& disk, const fcl::RSS<S>& rss) {
+[[gnu::flatten]] VolumeBound volumeBound(const DiskInShape& disk, const fcl::RSS<S>& rss) {
   const auto& axes = rss.axis.template cast<double>();
   const double half0 = 0.5 * double(rss.l[0]), half1 = 0.5 * double(rss.l[1]);
   const Vec3 o = rss.To.template cast<double>() + half0 * axes.col(0) + half1 * axes.col(1);
