@@ -5,7 +5,7 @@
 // geometry + transform APIs, float and double, both GJK solver types; pairs that
 // fcl_disk forwards to FCL (real cylinders, disks against spheres and boxes);
 // disks against a triangle mesh and an octree (fcl_disk's traversals, whose
-// queues are per-thread scratch), in pairs and in the broadphase scene;
+// queues are per-thread scratch);
 // and the same while another thread registers: the first Disk or registration
 // call, the same method again and again, or switching methods (each answer is
 // then one of the two methods' serial answers). FCL's tables themselves are
@@ -264,8 +264,9 @@ std::vector<PairSpec> otherPairs(Random& random, bool with_disks) {
 
 std::vector<PlacedShape> broadphaseScene(Random& random) {
   using T = ShapeSpec::Type;
-  constexpr T kTypes[] = {T::disk, T::disk, T::disk, T::disk, T::disk,
-                          T::box,  T::sphere, T::cylinder, T::mesh};
+  // No mesh: FCL's own sphere-mesh distance reads an uninitialised distance when
+  // the two meet (docs/scenes.md), which no thread can be expected to repeat.
+  constexpr T kTypes[] = {T::disk, T::disk, T::disk, T::disk, T::disk, T::box, T::sphere, T::cylinder};
   std::vector<PlacedShape> scene;
   for (int i = 0; i < kBroadphaseObjects; ++i) {
     scene.push_back({randomOtherShape(random, kTypes[i % std::size(kTypes)]), randomPose(random, 2.5)});
