@@ -152,6 +152,22 @@ Mesh roundedMesh(Mesh mesh) {
   return mesh;
 }
 
+/// The mesh as an FCL model with bounding volume BV (vertices rounded to BV's scalar).
+template <typename BV>
+std::shared_ptr<fcl::BVHModel<BV>> bvhOf(const Mesh& mesh) {
+  using S = typename BV::S;
+  std::vector<fcl::Vector3<S>> vertices;
+  for (const Vector3d& v : mesh.vertices) vertices.push_back(v.cast<S>());
+  std::vector<fcl::Triangle> triangles;
+  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
+  auto model = std::make_shared<fcl::BVHModel<BV>>();
+  model->beginModel();
+  model->addSubModel(vertices, triangles);
+  model->endModel();
+  model->computeLocalAABB();
+  return model;
+}
+
 // ---- octrees --------------------------------------------------------------------
 
 /// Octree leaves are set by integer cell index: cell (i, j, k) of an octomap

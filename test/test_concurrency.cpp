@@ -291,19 +291,9 @@ std::shared_ptr<fcl::CollisionGeometry<S>> makeGeometry(const ShapeSpec& shape) 
           4, 0, 3, 2, 1, 4, 4, 5, 6, 7, 4, 0, 1, 5, 4, 4, 1, 2, 6, 5, 4, 2, 3, 7, 6, 4, 3, 0, 4, 7});
       return std::make_shared<fcl::Convex<S>>(vertices, 6, faces);
     }
-    case ShapeSpec::Type::mesh: {
-      namespace families = fcl_disk_test::mesh_families;
-      const families::Mesh terrain = families::terrainMesh(kTerrainCells);
-      std::vector<fcl::Vector3<S>> vertices;
-      for (const Eigen::Vector3d& v : terrain.vertices) vertices.push_back(v.cast<S>());
-      std::vector<fcl::Triangle> triangles;
-      for (const auto& t : terrain.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-      auto model = std::make_shared<fcl::BVHModel<fcl::OBBRSS<S>>>();
-      model->beginModel();
-      model->addSubModel(vertices, triangles);
-      model->endModel();
-      return model;
-    }
+    case ShapeSpec::Type::mesh:
+      return fcl_disk_test::mesh_families::bvhOf<fcl::OBBRSS<S>>(
+          fcl_disk_test::mesh_families::terrainMesh(kTerrainCells));
     case ShapeSpec::Type::octree:
       return std::make_shared<fcl::OcTree<S>>(
           fcl_disk_test::mesh_families::blobOcTree(kOcTreeSeed).build());

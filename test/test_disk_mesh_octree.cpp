@@ -56,6 +56,7 @@ namespace ref = fcl_disk_test::ref;
 namespace fam = fcl_disk_test::mesh_families;
 using fam::DiskPose;
 using fam::Family;
+using fam::bvhOf;
 using fam::Mesh;
 using ref::Real;
 using ref::V3;
@@ -165,20 +166,6 @@ class FailureLog {
 
 // ---- FCL geometries -------------------------------------------------------------------
 
-template <typename BV>
-std::shared_ptr<fcl::BVHModel<BV>> bvhOf(const Mesh& mesh) {
-  using S = typename BV::S;
-  std::vector<fcl::Vector3<S>> vertices;
-  for (const Vector3d& v : mesh.vertices) vertices.push_back(v.cast<S>());
-  std::vector<fcl::Triangle> triangles;
-  for (const auto& t : mesh.triangles) triangles.emplace_back(t[0], t[1], t[2]);
-  auto model = std::make_shared<fcl::BVHModel<BV>>();
-  model->beginModel();
-  model->addSubModel(vertices, triangles);
-  model->endModel();
-  model->computeLocalAABB();
-  return model;
-}
 
 /// A mesh as a BVHModel of one BV type.
 template <typename S>
