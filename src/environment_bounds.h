@@ -189,30 +189,30 @@ void certifyAlongPair(const DiskInShape& disk, LeastAlong&& least_along, double 
 }
 
 /// The leaf's edges as candidates for the nearest pair (the rim or the face
-/// against an edge, which neither a vertex nor a face settles): the nearest
-/// pair of the disk and each segment edges[i] (segmentToDisk) replaces the
-/// upper bound when nearer, and the certificate along the best one's direction
-/// raises `lower` (certifyAlongPair). Worth it
-/// (edgesWorthTrying) while the bounds are apart by more than the gap
-/// tolerance and `lower` is below `worth_below`: a traversal prunes a leaf
-/// bounded above its best.
+/// against an edge, which neither a vertex nor a face settles), in order: the
+/// nearest pair of the disk and each segment edges[i] (segmentToDisk) replaces
+/// the upper bound when nearer, and the certificate along its direction raises
+/// `lower` (certifyAlongPair); the rest are skipped once `lower` reaches
+/// `worth_below` (the traversal drops the leaf: on docs/scenes.md's mesh the
+/// first edge's certificate settles most of the leaves that try edges). Worth
+/// it (edgesWorthTrying) while the bounds are apart by more than the gap
+/// tolerance and `lower` is below `worth_below`.
 inline bool edgesWorthTrying(double lower, double upper, double scale, double worth_below) {
   return upper - lower > kShapeGapTolerance * scale && lower < worth_below;
 }
 template <int kEdges, typename LeastAlong>
 void tryEdges(const DiskInShape& disk, const Vec3 (&edges)[kEdges][2], LeastAlong&& least_along,
-              double* lower, double* upper, Vec3* upper_disk, Vec3* upper_leaf) {
-  bool nearer = false;
-  for (int i = 0; i < kEdges; ++i) {
+              double worth_below, double* lower, double* upper, Vec3* upper_disk,
+              Vec3* upper_leaf) {
+  for (int i = 0; i < kEdges && *lower < worth_below; ++i) {
     const SegmentToDisk edge = segmentToDisk(disk, edges[i][0], edges[i][1]);
     if (edge.distance < *upper) {
-      nearer = true;
       *upper = edge.distance;
       *upper_disk = edge.p_disk;
       *upper_leaf = edge.p_segment;
     }
+    certifyAlongPair(disk, least_along, edge.distance, edge.p_disk, edge.p_segment, lower);
   }
-  if (nearer) certifyAlongPair(disk, least_along, *upper, *upper_disk, *upper_leaf, lower);
 }
 
 /// The points where a polytope's edge from vertex i to vertex j meets the
@@ -419,9 +419,10 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   // m.p_i, so it holds when rounding leaves m off the normal of a sliver; the
   // upper bound measures to a convex combination of the vertices, a point of
   // the triangle whatever m is.
+  // Skipped when the traversal drops the leaf already.
   const Vec3 normal = (p1 - p0).cross(p2 - p0);
   const double normal_squared = normal.squaredNorm();
-  if (normal_squared > 0.0) {
+  if (normal_squared > 0.0 && lower < worth_below) {
     Vec3 m = normal / std::sqrt(normal_squared);
     if (m.dot(disk.c - p0) < 0.0) m = -m;
     const Vec3 deepest = disk.lowestAlong(m);
@@ -444,9 +445,12 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
     }
   }
   if (edgesWorthTrying(lower, upper, scale, worth_below)) {
+    // The edge to the nearer of the other vertices first.
+    int first = (k + 1) % 3, second = (k + 2) % 3;
+    if (nearest_squared[second] < nearest_squared[first]) std::swap(first, second);
     const Vec3& near = *vertices[k];
-    const Vec3 edges[2][2] = {{near, *vertices[(k + 1) % 3]}, {near, *vertices[(k + 2) % 3]}};
-    tryEdges(disk, edges, least_along, &lower, &upper, &upper_disk, &upper_triangle);
+    const Vec3 edges[2][2] = {{near, *vertices[first]}, {near, *vertices[second]}};
+    tryEdges(disk, edges, least_along, worth_below, &lower, &upper, &upper_disk, &upper_triangle);
   }
   return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
 }
@@ -731,7 +735,7 @@ inline LeafToDisk alignedBoxToDisk(const DiskInShape& disk, const Vec3& o, const
     const Vec3 from = corner(nearest);
     const Vec3 edges[3][2] = {
         {from, corner(nearest ^ 1)}, {from, corner(nearest ^ 2)}, {from, corner(nearest ^ 4)}};
-    tryEdges(disk, edges, least_along, &lower, &upper, &upper_disk, &upper_box);
+    tryEdges(disk, edges, least_along, worth_below, &lower, &upper, &upper_disk, &upper_box);
   }
   return certifiedOrBound(lower, upper, upper_disk, upper_box, scale);
 }
