@@ -193,9 +193,8 @@ void certifyAlongPair(const DiskInShape& disk, LeastAlong&& least_along, double 
 /// nearest pair of the disk and each segment edges[i] (segmentToDisk) replaces
 /// the upper bound when nearer, and the certificate along its direction raises
 /// `lower` (certifyAlongPair); the rest are skipped once `lower` reaches
-/// `worth_below` (the traversal drops the leaf: on docs/scenes.md's mesh the
-/// first edge's certificate settles most of the leaves that try edges). Worth
-/// it (edgesWorthTrying) while the bounds are apart by more than the gap
+/// `worth_below` (a traversal drops a leaf bounded at or above its best).
+/// Worth it (edgesWorthTrying) while the bounds are apart by more than the gap
 /// tolerance and `lower` is below `worth_below`.
 inline bool edgesWorthTrying(double lower, double upper, double scale, double worth_below) {
   return upper - lower > kShapeGapTolerance * scale && lower < worth_below;
@@ -418,8 +417,8 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   // The face: m its unit normal turned towards c. The bound takes the largest
   // m.p_i, so it holds when rounding leaves m off the normal of a sliver; the
   // upper bound measures to a convex combination of the vertices, a point of
-  // the triangle whatever m is.
-  // Skipped when the traversal drops the leaf already.
+  // the triangle whatever m is. Skipped when the traversal drops the leaf
+  // already.
   const Vec3 normal = (p1 - p0).cross(p2 - p0);
   const double normal_squared = normal.squaredNorm();
   if (normal_squared > 0.0 && lower < worth_below) {

@@ -73,8 +73,8 @@ VolumeBound volumeBound(const DiskInShape& disk, const fcl::OBB<S>& obb) {
 /// rectangle's extent along it is 0, the disk's r |(u.axis_2, v.axis_2)|):
 /// the meshes' flat patches are often nearer to parallel with the disk than
 /// the box bound's directions, and the gap opens fewer volumes (1.3% fewer
-/// instructions per docs/scenes.md mesh_rss distance query; added to the OBB's
-/// least axis it saves nothing).
+/// instructions per docs/scenes.md mesh_rss distance query; along an OBB's
+/// least axis it costs more than it saves there).
 /// Flattened: GCC kept the box bound out of line here, and inlined it saves
 /// ~40 instructions a volume (callgrind).
 template <typename S>
