@@ -42,17 +42,11 @@
 #include "best_first_search.h"
 #include "environment_bounds.h"
 #include "leaf_solvers.h"
+#include "paired_volume_bounds.h"
 
 namespace fcl_disk {
 namespace internal {
 
-/// A lower bound on the distance from the disk to an FCL bounding volume
-/// (frame M), unpadded, and the magnitude its rounding pad scales with (but
-/// for the disk's share).
-struct VolumeBound {
-  double bound;
-  double magnitude;
-};
 /// An AABB, and a k-DOP as its first three slab pairs (alignedBoxOf).
 template <typename AlignedVolume>
 VolumeBound volumeBound(const DiskInShape& disk, const AlignedVolume& volume) {
@@ -175,6 +169,14 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
   std::vector<Entry>& scratch = scratchQueue<Entry>();
   const double disk_magnitude = diskBoundMagnitude(disk);
   const double disk_scale = disk.r + disk.c.norm();  // the leaf solver's share
+  // The padded bound of an inner node worth opening, or -1 (pruned).
+  const auto settleVolume = [&](const fcl::BVNode<BV>& node, const VolumeBound& volume) {
+    double bound = volume.bound - volume_pad * (disk_magnitude + volume.magnitude);
+    if (!(bound > 0.0)) bound = 0.0;  // NaN volumes are searched, never pruned
+    if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
+    prefetchChildren(model, node);
+    return bound;
+  };
   // The bound of a node worth opening, or -1 (pruned, or a leaf settled here).
   const auto evaluate = [&](int node_index) -> double {
     const auto& node = model.getBV(node_index);
@@ -195,12 +197,10 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
       bound = leaf.distance -
               triangle_pad * (disk_magnitude + triangleBoundMagnitude(p0, p1, p2));
     } else {
-      const VolumeBound volume = volumeBound(disk, node.bv);
-      bound = volume.bound - volume_pad * (disk_magnitude + volume.magnitude);
+      return settleVolume(node, volumeBound(disk, node.bv));
     }
-    if (!(bound > 0.0)) bound = 0.0;  // NaN volumes are searched, never pruned
+    if (!(bound > 0.0)) bound = 0.0;
     if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
-    if (!isLeaf(node)) prefetchChildren(model, node);
     return bound;
   };
   const double root_bound = evaluate(0);
@@ -217,7 +217,22 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
           consider(triangle, solution.p, solution.q, solution.distance);
           return;
         }
-        for (const int child : {node.first_child, node.first_child + 1}) {
+        const int first = node.first_child;
+        if constexpr (kPairedVolumeBounds<BV>) {
+#if FCL_DISK_PAIRED_VOLUME_BOUNDS
+          const auto& first_node = model.getBV(first);
+          const auto& second_node = model.getBV(first + 1);
+          if (!isLeaf(first_node) && !isLeaf(second_node)) {
+            const auto volumes = volumeBounds(disk, first_node.bv, second_node.bv);
+            const double first_bound = settleVolume(first_node, volumes[0]);
+            if (first_bound >= 0.0) offer(Entry{first_bound, first});
+            const double second_bound = settleVolume(second_node, volumes[1]);
+            if (second_bound >= 0.0) offer(Entry{second_bound, first + 1});
+            return;
+          }
+#endif
+        }
+        for (const int child : {first, first + 1}) {
           const double bound = evaluate(child);
           if (bound >= 0.0) offer(Entry{bound, child});
         }
