@@ -1,7 +1,7 @@
 // Internal: the lower bounds of a hierarchy node's two children at once, one
 // child per lane of a 2-wide double vector (SSE2, every x86-64), for the mesh
 // distance traversal (src/mesh_distance.h). The arithmetic is volumeBound's
-// for an OBB and an RSS, operation for operation, so each lane's bound is the
+// for an OBB, an RSS and an AABB, operation for operation, so each lane's bound is the
 // same bound (rounded alike up to the order of a sum, well inside the
 // traversal's rounding pad); NaN in a volume gives a NaN or zero bound, which
 // the traversal searches. docs/meshes_and_octrees.md, "Distance traversal".
@@ -11,6 +11,7 @@
 // lanes; two volumes in the two lanes share every instruction.
 #pragma once
 
+#include <fcl/math/bv/AABB.h>
 #include <fcl/math/bv/OBB.h>
 #include <fcl/math/bv/OBBRSS.h>
 #include <fcl/math/bv/RSS.h>
@@ -164,11 +165,27 @@ std::array<VolumeBound, 2> volumeBounds(const DiskInShape& disk, const fcl::RSS<
                      boxBoundMagnitudeLanes(o, e) + radius);
 }
 
+/// volumeBound for two AABBs: centres and half-extents formed in S as
+/// alignedBoxOf forms them, the frame's axes as the boxes'.
+template <typename S>
+std::array<VolumeBound, 2> volumeBounds(const DiskInShape& disk, const fcl::AABB<S>& first,
+                                        const fcl::AABB<S>& second) {
+  using namespace lanes;
+  V A[3][3], o[3], e[3], d_box[3];
+  for (int i = 0; i < 3; ++i) {
+    for (int k = 0; k < 3; ++k) A[i][k] = all(i == k ? 1.0 : 0.0);
+    o[i] = of(S((first.min_[i] + first.max_[i]) / 2), S((second.min_[i] + second.max_[i]) / 2));
+    e[i] = of(S((first.max_[i] - first.min_[i]) / 2), S((second.max_[i] - second.min_[i]) / 2));
+  }
+  return splitBounds(diskBoxLowerBoundLanes(disk, o, A, e, d_box), boxBoundMagnitudeLanes(o, e));
+}
+
 /// Whether volumeBounds pairs BV's volumes.
 template <typename BV>
 constexpr bool kPairedVolumeBounds =
     std::is_same_v<BV, fcl::OBB<typename BV::S>> || std::is_same_v<BV, fcl::RSS<typename BV::S>> ||
-    std::is_same_v<BV, fcl::OBBRSS<typename BV::S>> || std::is_same_v<BV, fcl::kIOS<typename BV::S>>;
+    std::is_same_v<BV, fcl::OBBRSS<typename BV::S>> || std::is_same_v<BV, fcl::kIOS<typename BV::S>> ||
+    std::is_same_v<BV, fcl::AABB<typename BV::S>>;
 
 #else
 
