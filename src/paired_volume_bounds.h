@@ -116,18 +116,25 @@ inline std::array<VolumeBound, 2> splitBounds(lanes::V bound, lanes::V magnitude
   return {VolumeBound{b[0], m[0]}, VolumeBound{b[1], m[1]}};
 }
 
+/// The bounds of two boxes whose axes, centres and half-extents `fill(i, A_i,
+/// o_i, e_i)` sets coordinate by coordinate (A_i[k]: component i of axis k).
+template <typename Fill>
+[[gnu::always_inline]] inline std::array<VolumeBound, 2> boxBounds(const DiskInShape& disk,
+                                                                   Fill&& fill) {
+  lanes::V A[3][3], o[3], e[3], d_box[3];
+  for (int i = 0; i < 3; ++i) fill(i, A[i], o[i], e[i]);
+  return splitBounds(diskBoxLowerBoundLanes(disk, o, A, e, d_box), boxBoundMagnitudeLanes(o, e));
+}
+
 /// volumeBound for two OBBs.
 template <typename S>
 std::array<VolumeBound, 2> volumeBounds(const DiskInShape& disk, const fcl::OBB<S>& first,
                                         const fcl::OBB<S>& second) {
-  using namespace lanes;
-  V A[3][3], o[3], e[3], d_box[3];
-  for (int i = 0; i < 3; ++i) {
-    for (int k = 0; k < 3; ++k) A[i][k] = of(first.axis(i, k), second.axis(i, k));
-    o[i] = of(first.To[i], second.To[i]);
-    e[i] = of(first.extent[i], second.extent[i]);
-  }
-  return splitBounds(diskBoxLowerBoundLanes(disk, o, A, e, d_box), boxBoundMagnitudeLanes(o, e));
+  return boxBounds(disk, [&](int i, lanes::V(&axes_i)[3], lanes::V& o_i, lanes::V& e_i) {
+    for (int k = 0; k < 3; ++k) axes_i[k] = lanes::of(first.axis(i, k), second.axis(i, k));
+    o_i = lanes::of(first.To[i], second.To[i]);
+    e_i = lanes::of(first.extent[i], second.extent[i]);
+  });
 }
 template <typename S>
 std::array<VolumeBound, 2> volumeBounds(const DiskInShape& disk, const fcl::OBBRSS<S>& first,
@@ -170,22 +177,22 @@ std::array<VolumeBound, 2> volumeBounds(const DiskInShape& disk, const fcl::RSS<
 template <typename S>
 std::array<VolumeBound, 2> volumeBounds(const DiskInShape& disk, const fcl::AABB<S>& first,
                                         const fcl::AABB<S>& second) {
-  using namespace lanes;
-  V A[3][3], o[3], e[3], d_box[3];
-  for (int i = 0; i < 3; ++i) {
-    for (int k = 0; k < 3; ++k) A[i][k] = all(i == k ? 1.0 : 0.0);
-    o[i] = of(S((first.min_[i] + first.max_[i]) / 2), S((second.min_[i] + second.max_[i]) / 2));
-    e[i] = of(S((first.max_[i] - first.min_[i]) / 2), S((second.max_[i] - second.min_[i]) / 2));
-  }
-  return splitBounds(diskBoxLowerBoundLanes(disk, o, A, e, d_box), boxBoundMagnitudeLanes(o, e));
+  return boxBounds(disk, [&](int i, lanes::V(&axes_i)[3], lanes::V& o_i, lanes::V& e_i) {
+    for (int k = 0; k < 3; ++k) axes_i[k] = lanes::all(i == k ? 1.0 : 0.0);
+    o_i = lanes::of(S((first.min_[i] + first.max_[i]) / 2),
+                    S((second.min_[i] + second.max_[i]) / 2));
+    e_i = lanes::of(S((first.max_[i] - first.min_[i]) / 2),
+                    S((second.max_[i] - second.min_[i]) / 2));
+  });
 }
 
 /// Whether volumeBounds pairs BV's volumes.
 template <typename BV>
-constexpr bool kPairedVolumeBounds =
-    std::is_same_v<BV, fcl::OBB<typename BV::S>> || std::is_same_v<BV, fcl::RSS<typename BV::S>> ||
-    std::is_same_v<BV, fcl::OBBRSS<typename BV::S>> || std::is_same_v<BV, fcl::kIOS<typename BV::S>> ||
-    std::is_same_v<BV, fcl::AABB<typename BV::S>>;
+constexpr bool kPairedVolumeBounds = std::is_same_v<BV, fcl::OBB<typename BV::S>> ||
+                                     std::is_same_v<BV, fcl::RSS<typename BV::S>> ||
+                                     std::is_same_v<BV, fcl::OBBRSS<typename BV::S>> ||
+                                     std::is_same_v<BV, fcl::kIOS<typename BV::S>> ||
+                                     std::is_same_v<BV, fcl::AABB<typename BV::S>>;
 
 #else
 
