@@ -8,7 +8,8 @@
 // request's rel_err and abs_err). An opened node's nearer child is opened next
 // without passing through the queue when nothing queued is nearer. Bounds
 // (src/environment_bounds.h): an inner node's volume as an oriented box
-// (diskBoxLowerBound); a leaf's triangle by triangleToDisk, which answers
+// (diskBoxLowerBound; two sibling volumes at once where
+// src/paired_volume_bounds.h pairs them); a leaf's triangle by triangleToDisk, which answers
 // exactly when the triangle projects into the disk or its certificate closes
 // (a vertex or the face nearest a disk point), so that leaf never reaches the
 // solver; a leaf bounded at or above the best distance is dropped; other
@@ -199,7 +200,7 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
     } else {
       return settleVolume(node, volumeBound(disk, node.bv));
     }
-    if (!(bound > 0.0)) bound = 0.0;
+    if (!(bound > 0.0)) bound = 0.0;  // a rounded-down bound of a touching triangle
     if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
     return bound;
   };
