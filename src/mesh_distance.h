@@ -200,7 +200,7 @@ MeshDistanceAnswer diskMeshDistance(const DiskInShape& disk, const fcl::BVHModel
     } else {
       return settleVolume(node, volumeBound(disk, node.bv));
     }
-    if (!(bound > 0.0)) bound = 0.0;  // a rounded-down bound of a touching triangle
+    if (!(bound > 0.0)) bound = 0.0;  // the pad can take a near triangle's bound below 0
     if (cannotImprove(bound, answer.distance, rel_err, abs_err)) return -1.0;
     return bound;
   };
