@@ -23,6 +23,8 @@
 #include <string>
 #include <vector>
 
+#include "test_random.h"
+
 namespace {
 
 template <typename S>
@@ -390,6 +392,59 @@ TYPED_TEST(Robustness, RotationWithinToleranceIsTheDiskOfItsNormal) {
       }
     }
   }
+}
+
+// checkDiskPose's two-lane form (double, SSE2) and the entry-by-entry rule give
+// the same verdicts: on rotations perturbed entry by entry around both
+// tolerances (defects from 1e-17 to 1e-4, either sign), on every non-finite
+// entry and on translations around kMaxDiskLength.
+TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
+  using fcl_disk::internal::checkDiskPose;
+  using fcl_disk::internal::checkDiskPoseOneByOne;
+  fcl_disk_test::Random random(20241128);
+  // The solvers ask for 1e-13 (their as-given tolerance in double) and -1
+  // (never, in float); 1e-9 is one more threshold inside the draws' range.
+  const double tolerances[] = {1e-13, 1e-9, -1.0};
+  int valid = 0, invalid = 0, orthonormal = 0;
+  const auto expect_same = [&](const fcl::Transform3d& X) {
+    for (const double tolerance : tolerances) {
+      const auto two_lanes = checkDiskPose(X, tolerance);
+      const auto rule = checkDiskPoseOneByOne(X, tolerance);
+      ASSERT_EQ(two_lanes.valid, rule.valid) << X.matrix();
+      if (rule.valid) {
+        ASSERT_EQ(two_lanes.orthonormal, rule.orthonormal) << X.matrix();
+        orthonormal += rule.orthonormal;
+      }
+      (rule.valid ? valid : invalid) += 1;
+    }
+  };
+  for (int i = 0; i < 20000; ++i) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() = random.rotation();
+    X.translation() = random.inBall(random.logUniform(1e-3, 1e3));
+    const int entries = 1 + int(random.uniform01() * 3);
+    for (int e = 0; e < entries; ++e) {
+      const int row = int(random.uniform01() * 3), col = int(random.uniform01() * 3);
+      const double sign = random.chance(0.5) ? 1.0 : -1.0;
+      X.matrix()(row, col) += sign * random.logUniform(1e-17, 1e-4);
+    }
+    expect_same(X);
+  }
+  const fcl::Transform3d X = tiltedPose<double>({0.3, -0.2, 0.1}, {1, 2, 3});
+  for (const auto& variant : nonFiniteVariants<double>(X)) expect_same(variant.second);
+  const double length = fcl_disk::kMaxDiskLength<double>;
+  for (int coordinate = 0; coordinate < 3; ++coordinate) {
+    for (const double value : {length, std::nextafter(length, 2 * length), -length,
+                               -std::nextafter(length, 2 * length)}) {
+      fcl::Transform3d moved = X;
+      moved.translation()(coordinate) = value;
+      expect_same(moved);
+    }
+  }
+  // Both verdicts occur: the draws straddle the tolerances.
+  EXPECT_GT(valid, 1000);
+  EXPECT_GT(invalid, 1000);
+  EXPECT_GT(orthonormal, 1000);
 }
 
 // A reflection (det = -1) maps the local disk onto the same set as the rotation
