@@ -27,6 +27,12 @@ struct BoundaryOfDisk {
   }
 };
 
+/// A normal whose squared length lies within [this, 1 / this] (every normal
+/// FCL's constructors leave: they normalise it) is normalised by one reciprocal
+/// square root, its square and reciprocal staying normal doubles; others, down
+/// to subnormal components, are first scaled by their largest component.
+constexpr double kPlainNormalSquaredLength = 1e-200;
+
 /// n, d of the shape; valid if finite, n non-zero (any magnitude: FCL's own
 /// constructor normalises it, and so does boundaryOfDisk).
 template <typename S>
@@ -38,17 +44,28 @@ bool isValidBoundary(const fcl::Vector3<S>& n, S d) {
 template <typename S>
 BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d, const fcl::Transform3<S>& X_WS,
                               const DiskInShape& disk) {
-  // Scaled by its largest component first: a normal of tiny (even subnormal)
-  // components still normalises to a unit vector, which is then turned.
   const Vec3 n_raw = n_S.template cast<double>();
-  const double largest = n_raw.cwiseAbs().maxCoeff();
-  const Vec3 n_scaled = n_raw / largest;
-  const double scaled_length = n_scaled.norm();
-  const Vec3 n = X_WS.linear().template cast<double>() * (n_scaled / scaled_length);
-  const double length = largest * scaled_length;
+  const double squared_length = n_raw.squaredNorm();
+  Vec3 n_unit;
+  double offset;  // d / |n|: the plane's distance from the shape's origin
+  if (squared_length >= kPlainNormalSquaredLength &&
+      squared_length <= 1.0 / kPlainNormalSquaredLength) {
+    const double inverse_length = 1.0 / std::sqrt(squared_length);
+    n_unit = inverse_length * n_raw;
+    offset = double(d) * inverse_length;
+  } else {
+    // Scaled by its largest component first: a normal of tiny (even subnormal)
+    // components still normalises to a unit vector.
+    const double largest = n_raw.cwiseAbs().maxCoeff();
+    const Vec3 n_scaled = n_raw / largest;
+    const double scaled_length = n_scaled.norm();
+    n_unit = n_scaled / scaled_length;
+    offset = double(d) / (largest * scaled_length);
+  }
+  const Vec3 n = X_WS.linear().template cast<double>() * n_unit;
   const Vec2 planar = disk.inPlane(n);
-  return BoundaryOfDisk{n, n.dot(disk.c) - double(d) / length,
-                        planar.x() * disk.u + planar.y() * disk.v, planar.norm()};
+  return BoundaryOfDisk{n, n.dot(disk.c) - offset, planar.x() * disk.u + planar.y() * disk.v,
+                        planar.norm()};
 }
 
 /// scale = r + |h0| (the shape's "origin" is the foot of the disk centre).
