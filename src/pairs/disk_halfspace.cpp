@@ -41,9 +41,12 @@ bool isValidBoundary(const fcl::Vector3<S>& n, S d) {
 }
 
 /// n_S, d: the shape's (shape frame); X_WS its pose; `disk` from diskAtShapeOrigin.
+/// Always inlined, as diskAtShapeOrigin and closedForm below: the pair takes a
+/// few hundred instructions, and calls would pass their structs through memory.
 template <typename S>
-BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d, const fcl::Transform3<S>& X_WS,
-                              const DiskInShape& disk) {
+[[gnu::always_inline]] inline BoundaryOfDisk boundaryOfDisk(const fcl::Vector3<S>& n_S, S d,
+                                                            const fcl::Transform3<S>& X_WS,
+                                                            const DiskInShape& disk) {
   const Vec3 n_raw = n_S.template cast<double>();
   const double squared_length = n_raw.squaredNorm();
   Vec3 n_unit;
@@ -76,8 +79,8 @@ double boundaryScale(const DiskInShape& disk, const BoundaryOfDisk& boundary) {
 /// The result for points p, q (diskAtShapeOrigin's frame) at `distance`, which
 /// the closed form proves: the certificate at w = -+n equals it.
 template <typename S>
-DiskShapeDistanceResult<S> closedForm(const fcl::Transform3<S>& X_WS, const Vec3& p, const Vec3& q,
-                                      double distance) {
+[[gnu::always_inline]] inline DiskShapeDistanceResult<S> closedForm(
+    const fcl::Transform3<S>& X_WS, const Vec3& p, const Vec3& q, double distance) {
   DiskShapeSolution solution;
   solution.p = p;
   solution.q = q;

@@ -21,8 +21,9 @@ bool isValidSphere(const fcl::Sphere<S>& sphere) {
 }
 
 /// p = the disk point nearest the centre; q on the sphere towards p; distance
-/// |p| - rho, or 0 with p common when |p| <= rho.
-DiskShapeSolution solveSphere(const DiskInShape& disk, double rho) {
+/// |p| - rho, or 0 with p common when |p| <= rho. Always inlined, so that the
+/// disk from diskAtShapeOrigin stays in registers.
+[[gnu::always_inline]] inline DiskShapeSolution solveSphere(const DiskInShape& disk, double rho) {
   DiskShapeSolution solution;
   solution.p = disk.point(disk.nearest(Vec3::Zero()));
   const double core_distance = solution.p.norm();
