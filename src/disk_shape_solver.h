@@ -162,7 +162,8 @@ struct DiskInShape {
 /// (double; the offset c_D - c_S is formed first, so a common translation costs
 /// only its rounding).
 template <typename S>
-DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
+[[gnu::always_inline]] inline DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD,
+                                                      const fcl::Transform3<S>& X_WS) {
   const Mat3 R_WS = X_WS.linear().template cast<double>();
   const Mat3 R_WD = X_WD.linear().template cast<double>();
   const Vec3 offset =
@@ -185,7 +186,7 @@ DiskInShape orthonormalDiskInShape(S radius, const fcl::Transform3<S>& X_WD,
 
 /// A point of frame S in the world.
 template <typename S>
-Vec3 toWorldPoint(const fcl::Transform3<S>& X_WS, const Vec3& p_S) {
+[[gnu::always_inline]] inline Vec3 toWorldPoint(const fcl::Transform3<S>& X_WS, const Vec3& p_S) {
   return X_WS.translation().template cast<double>() + X_WS.linear().template cast<double>() * p_S;
 }
 
