@@ -65,10 +65,14 @@ DiskAndShapePoseCheck checkDiskAndShapePose(S radius, const fcl::Transform3<S>& 
 /// The disk's pose and radius, and the shape's pose, describe a pair (the shape's
 /// own dimensions are the pair's to check). A shape pose obeys the disk pose rule:
 /// finite, within kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance.
+/// Inlined whole, for the closed forms that need no more (the sphere, the
+/// halfspace, the plane): only the verdicts they use are then computed.
 template <typename S>
-bool isValidDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
-                             const fcl::Transform3<S>& X_WS) {
-  return checkDiskAndShapePose(radius, X_WD, X_WS).valid;
+[[gnu::always_inline]] inline bool isValidDiskAndShapePose(S radius,
+                                                           const fcl::Transform3<S>& X_WD,
+                                                           const fcl::Transform3<S>& X_WS) {
+  return isValidDiskRadius(radius) & checkDiskPose(X_WD, S(-1)).valid &
+         checkDiskPose(X_WS, S(-1)).valid;
 }
 
 /// The result of a solution in the shape's frame, or (toWorldFromShapeOrigin)
