@@ -121,7 +121,7 @@ inline DiskPoseCheck checkDiskPoseOneByOne(const fcl::Transform3<S>& X_WD,
 /// The same rule for double with SSE2's two-lane vectors, three pairs of R^T R's
 /// entries at a time: the same products summed in the same order, so the same
 /// defects to the bit and the same verdicts (test_robustness compares the two),
-/// in about half the instructions (the check runs on every query of every pair).
+/// in fewer instructions: the check runs on both poses of every query.
 /// m: the 4x4 matrix, column-major (M(k, i) = m[4 i + k]).
 inline DiskPoseCheck checkDiskPoseTwoLanes(const double* m, double orthonormal_tolerance) {
   // Row k of the rotation adds (M_k0, M_k1)^2 to the lanes (G00, G11),
