@@ -71,8 +71,7 @@ template <typename S>
 [[gnu::always_inline]] inline bool isValidDiskAndShapePose(S radius,
                                                            const fcl::Transform3<S>& X_WD,
                                                            const fcl::Transform3<S>& X_WS) {
-  return isValidDiskRadius(radius) & checkDiskPose(X_WD, S(-1)).valid &
-         checkDiskPose(X_WS, S(-1)).valid;
+  return isValidDiskRadius(radius) & isValidDiskPose(X_WD) & isValidDiskPose(X_WS);
 }
 
 /// The result of a solution in the shape's frame, or (toWorldFromShapeOrigin)
