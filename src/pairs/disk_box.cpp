@@ -63,8 +63,12 @@ struct BoxTraits {
   }
   static double inflation(const fcl::Box<S>&) { return 0.0; }
   /// A corner, an edge or a face nearest a disk point, certified without the
-  /// generic solver (alignedBoxToDisk, src/environment_bounds.h).
-  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Box<S>& box, double scale) {
+  /// generic solver (alignedBoxToDisk, src/environment_bounds.h). Flattened:
+  /// its helpers are inlined here and the box's centre folds to the constant
+  /// 0, which takes fewer instructions and less time than the calls
+  /// (docs/performance.md, "A Disk against FCL's primitives").
+  [[gnu::flatten]] static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Box<S>& box,
+                                                double scale) {
     return alignedBoxToDisk(disk, Vec3::Zero(), 0.5 * box.side.template cast<double>(), scale);
   }
   static BoxTarget target(const fcl::Box<S>& box) {
