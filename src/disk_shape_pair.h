@@ -33,13 +33,6 @@ inline bool areValidShapeLengths(std::initializer_list<double> lengths) {
   return valid;
 }
 
-/// sqrt(a^2 + b^2) for two valid shape lengths, without std::hypot's guard
-/// against overflow (about 50 instructions a call): the squares of lengths up
-/// to kMaxDiskLength stay finite, and a square that underflows moves a scene
-/// size, which is at least the disk radius (>= kMinDiskRadius), by under
-/// 1e-50 of itself.
-inline double hypotOfShapeLengths(double a, double b) { return std::sqrt(a * a + b * b); }
-
 template <typename S>
 DiskShapeDistanceResult<S> nanDiskShapeResult() {
   const S nan = std::numeric_limits<S>::quiet_NaN();

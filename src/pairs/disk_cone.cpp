@@ -147,7 +147,7 @@ struct ConeTraits {
     return areValidShapeLengths({double(cone.radius), double(cone.lz)});
   }
   static double boundingRadius(const fcl::Cone<S>& cone) {
-    return hypotOfShapeLengths(double(cone.radius), 0.5 * double(cone.lz));
+    return Vec2(double(cone.radius), 0.5 * double(cone.lz)).norm();
   }
   static double inflation(const fcl::Cone<S>&) { return 0.0; }
   static ConeTarget target(const fcl::Cone<S>& cone) {

@@ -57,7 +57,7 @@ struct CylinderTraits {
     return areValidShapeLengths({double(cylinder.radius), double(cylinder.lz)});
   }
   static double boundingRadius(const fcl::Cylinder<S>& cylinder) {
-    return hypotOfShapeLengths(double(cylinder.radius), 0.5 * double(cylinder.lz));
+    return Vec2(double(cylinder.radius), 0.5 * double(cylinder.lz)).norm();
   }
   static double inflation(const fcl::Cylinder<S>&) { return 0.0; }
   static CylinderTarget target(const fcl::Cylinder<S>& cylinder) {
