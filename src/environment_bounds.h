@@ -177,6 +177,17 @@ inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_dis
   return answer;
 }
 
+/// A solver's answer (nearest points, distance, certificate) as an exact leaf.
+inline LeafToDisk exactLeafOf(const DiskShapeSolution& solution) {
+  LeafToDisk answer;
+  answer.exact = true;
+  answer.distance = solution.distance;
+  answer.certified = solution.lower_bound;
+  answer.p_disk = solution.p;
+  answer.p_leaf = solution.q;
+  return answer;
+}
+
 /// Raises `lower` to the certificate along the direction of a pair of points
 /// `distance` apart, w = (p_leaf - p_disk) / distance: least_along(w) - h_K(w),
 /// `least_along(w)` the least w.y over the leaf.

@@ -157,6 +157,46 @@ TEST(DiskShapeCases, HandDerivedDistances) {
 // Its projection's root t is then far below e_max^2: the secular iteration
 // must close its bracket relative to the tiny axes, or the shape point lands
 // off the needle (0.1 off, fuzz_disk_shapes; corpus regression-ellipsoid-needle).
+// The cone's closed forms (ConeTraits::closedForm), each on a pose derived by
+// hand, in both float and double: they answer without the generic solver
+// (iterations 0) with the nearest points.
+template <typename S>
+void expectConeClosedForm(const Transform3d& X_WC, double distance, const Vector3d& p_disk,
+                          const Vector3d& p_cone) {
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
+  const auto result = fcl_disk::diskShapeDistance(S(1), fcl::Transform3<S>::Identity(),
+                                                  fcl::Cone<S>(S(0.5), S(1)), X_WC.cast<S>());
+  EXPECT_NEAR(result.distance, distance, tolerance);
+  EXPECT_NEAR((result.p_W_disk.template cast<double>() - p_disk).norm(), 0.0, tolerance);
+  EXPECT_NEAR((result.p_W_shape.template cast<double>() - p_cone).norm(), 0.0, tolerance);
+  EXPECT_LE(result.certifiedGap(), S(tolerance));
+  EXPECT_EQ(result.iterations, 0);
+}
+
+TEST(DiskShapeCases, ConeApexAndBaseRimInClosedForm) {
+  for (const bool in_float : {false, true}) {
+    const auto expect = in_float ? expectConeClosedForm<float> : expectConeClosedForm<double>;
+    // Disk r = 1 at the origin, normal +z; cone r = 0.5, lz = 1 (apex at +0.5
+    // on its axis). The apex at (1.3, 0, 0.4), the axis (base to apex) along
+    // a = (-0.6, 0, -0.8), towards the rim point (1, 0, 0): the cone lies
+    // behind the plane through the apex normal to a, and every disk point x
+    // has (x - apex).a = 1.1 - 0.6 x_1 >= 0.5, equal at (1, 0, 0): 0.5.
+    const Vector3d a(-0.6, 0, -0.8);
+    expect(at(Vector3d(1.3, 0, 0.4) - 0.5 * a, a), 0.5, Vector3d(1, 0, 0), Vector3d(1.3, 0, 0.4));
+    // The disk in the plane y = 0 (normal +y) centred at (2.5, 0, -0.3), beside
+    // an upright cone at the origin: both are symmetric about y = 0, so a
+    // nearest pair lies in that plane, where the cone is the triangle
+    // (+-0.5, -0.5), (0, 0.5) and the disk the circle of radius 1 about
+    // (2.5, -0.3). From the base's rim point B = (0.5, -0.5) the centre is
+    // (2, 0.2) away, between the base's outward normal (0, -1) and the
+    // side's (2, 1) / sqrt(5): B is the nearest, at sqrt(4.04) - 1.
+    const Vector3d centre(2.5, 0, -0.3), B(0.5, 0, -0.5);
+    const Transform3d X_WD = at(centre, Vector3d::UnitY());
+    expect(X_WD.inverse(), std::sqrt(4.04) - 1,
+           X_WD.inverse() * (centre - (centre - B).normalized()), X_WD.inverse() * B);
+  }
+}
+
 TEST(DiskShapeCases, NeedleEllipsoidPointsStayOnTheNeedle) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);

@@ -153,14 +153,52 @@ struct ConeTraits {
   static ConeTarget target(const fcl::Cone<S>& cone) {
     return ConeTarget{double(cone.radius), 0.5 * double(cone.lz)};
   }
-  /// A disk whose centre lies beyond the base's plane is usually nearest the
-  /// base, a disk (diskAgainstFlatEnd: exact where the certificate along the
-  /// disk-base pair closes); the others, and those it leaves open, go to the
+  /// Two exact cases, each tried where the disk's centre says it is likely
+  /// (docs/disk_shape_distance.md, section 4); what neither settles goes to the
   /// generic solver. `disk`'s axes are orthonormal (solvedDiskInShape).
+  /// - the apex, for a centre above it: the disk's point p nearest the apex
+  ///   (closed form) is optimal when p - apex lies in the cone's normal cone
+  ///   at the apex, radius |(p - apex)_xy| <= 2 half_length (p - apex)_z (the
+  ///   apex is then p's nearest cone point: the KKT conditions of the convex
+  ///   pair); the certificate along the pair proves it;
+  /// - the base, a disk (diskAgainstFlatEnd: exact where the certificate along
+  ///   the disk-base pair closes), for a centre beyond the base's plane, or
+  ///   beside the cone with its nearest cone point at the base's rim (in the
+  ///   meridian half-plane, past the slant side's end B = (radius, -h) along
+  ///   it) and the disk reaching below the base's plane.
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Cone<S>& cone, double scale) {
     const ConeTarget cone_target = target(cone);
-    if (!(disk.c.z() < -cone_target.half_length)) return LeafToDisk{};
-    return diskAgainstFlatEnd(disk, cone_target, cone_target.flatEnds()[0], scale);
+    const double h = cone_target.half_length, radius = cone_target.radius;
+    const Vec3& c = disk.c;
+    if (c.z() > h) return apexAgainstDisk(cone_target, disk, scale);
+    const auto against_base = [&] {
+      return diskAgainstFlatEnd(disk, cone_target, cone_target.flatEnds()[0], scale);
+    };
+    if (c.z() < -h) return against_base();
+    const double centre_rho = std::sqrt(c.x() * c.x() + c.y() * c.y());
+    const bool nearest_base_rim = (centre_rho - radius) * radius >= 2.0 * h * (c.z() + h);
+    const double normal_tilt = Vec2(disk.u.z(), disk.v.z()).norm();  // |P_disk z|
+    if (centre_rho > radius && nearest_base_rim && c.z() - disk.r * normal_tilt < -h) {
+      return against_base();
+    }
+    return LeafToDisk{};
+  }
+  /// The apex case of closedForm; not exact where the disk's nearest point to
+  /// the apex is not the cone's nearest, or within touching of it (overlaps
+  /// are the generic solver's to decide).
+  static LeafToDisk apexAgainstDisk(const ConeTarget& cone_target, const DiskInShape& disk,
+                                    double scale) {
+    const Vec3 apex(0.0, 0.0, cone_target.half_length);
+    const Vec3 p = disk.point(disk.nearest(apex));
+    const Vec3 away = p - apex;
+    const double away_rho = std::sqrt(away.x() * away.x() + away.y() * away.y());
+    if (!(cone_target.radius * away_rho <= 2.0 * cone_target.half_length * away.z())) {
+      return LeafToDisk{};
+    }
+    const double upper = away.norm();
+    if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
+    const double lower = certificateAlong(cone_target, disk, 0.0, Vec3(-away));
+    return certifiedOrBound(lower, upper, p, apex, scale);
   }
   /// The directions among which the shortest separating translation lies
   /// (shortestSeparation adds the disk's normals and both signs), so the contact's

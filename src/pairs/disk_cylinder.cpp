@@ -93,15 +93,7 @@ struct CylinderTraits {
       if (cap.exact) return cap;
     }
     const DiskShapeSolution wall = solveDiskCapsule(disk, cylinder_target.radius, h);
-    if (std::abs(wall.q.z()) <= h) {
-      LeafToDisk answer;
-      answer.exact = true;
-      answer.distance = wall.distance;
-      answer.certified = wall.lower_bound;
-      answer.p_disk = wall.p;
-      answer.p_leaf = wall.q;
-      return answer;
-    }
+    if (std::abs(wall.q.z()) <= h) return exactLeafOf(wall);
     const double wall_side = wall.q.z() < 0.0 ? -1.0 : 1.0;
     if (!beyond_cap || wall_side != centre_side) return against_cap(wall_side);
     return LeafToDisk{};
