@@ -8,8 +8,14 @@
 //   callgrind_annotate --inclusive=yes cg.out | grep -m1 'diskShapeDistance<double, fcl::Box'
 //
 // Instruction counts are not moved by the load of a shared machine, so they
-// compare commits where wall-clock medians cannot.
+// compare commits where wall-clock medians cannot. `float` runs the same cases
+// on Disk<float> (shapes and poses rounded to float), and a pass count makes
+// the queries outweigh the set-up, for timing whole processes side by side:
+//
+//   B="env LD_LIBRARY_PATH=OTHER ./build/bench/disk_shape_calls box float 2000"
+//   farm-bench -n 10 --vs "$B" -- ./build/bench/disk_shape_calls box float 2000
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,43 +26,55 @@
 
 namespace {
 constexpr int kCases = 2000;
-constexpr int kPasses = 10;
+constexpr int kDefaultPasses = 10;
 constexpr std::uint64_t kSeed = 20240601;
 
 namespace dsc = fcl_disk_shape_cases;
 
 /// diskShapeDistance on `shape` as its FCL class.
-double distanceTo(const fcl::ShapeBase<double>& shape, const fcl::Transform3<double>& X_WD,
-                  const fcl::Transform3<double>& X_WS) {
+template <typename S>
+double distanceTo(const fcl::ShapeBase<S>& shape, const fcl::Transform3<S>& X_WD,
+                  const fcl::Transform3<S>& X_WS) {
   return fcl_disk_test::oracle::withShapeClass(shape, [&](const auto& typed) {
-    return fcl_disk::diskShapeDistance(dsc::kDiskRadius, X_WD, typed, X_WS).distance;
+    return double(fcl_disk::diskShapeDistance(S(dsc::kDiskRadius), X_WD, typed, X_WS).distance);
   });
+}
+
+/// The sum of the distances of `passes` passes over the cases, in S.
+template <typename S>
+double sumOfDistances(const dsc::ShapeKind& kind, int passes) {
+  struct Query {
+    std::shared_ptr<fcl::ShapeBase<S>> shape;
+    fcl::Transform3<S> X_WD, X_WS;
+  };
+  std::vector<Query> queries;
+  for (const dsc::CaseSpec& c : dsc::makeCases(kind, kCases, kSeed)) {
+    queries.push_back({dsc::makeShape<S>(c.shape), dsc::toS<S>(c.X_WD), dsc::toS<S>(c.X_WS)});
+  }
+  double sum = 0.0;
+  for (int pass = 0; pass < passes; ++pass) {
+    for (const Query& q : queries) sum += distanceTo<S>(*q.shape, q.X_WD, q.X_WS);
+  }
+  return sum;
 }
 }  // namespace
 
 int main(int argc, char** argv) {
   const dsc::ShapeKind* kind = nullptr;
   for (const dsc::ShapeKind& k : dsc::allShapeKinds()) {
-    if (argc == 2 && std::string(argv[1]) == dsc::shapeName(k)) kind = &k;
+    if (argc >= 2 && std::string(argv[1]) == dsc::shapeName(k)) kind = &k;
   }
-  if (kind == nullptr) {
-    std::fprintf(stderr, "usage: %s SHAPE\nshapes:", argv[0]);
+  const bool in_float = argc >= 3 && std::string(argv[2]) == "float";
+  const int passes = argc >= 4 ? std::atoi(argv[3]) : kDefaultPasses;
+  if (kind == nullptr || argc > 4 || (argc >= 3 && !in_float && std::string(argv[2]) != "double") ||
+      passes < 1) {
+    std::fprintf(stderr, "usage: %s SHAPE [double|float [PASSES]]\nshapes:", argv[0]);
     for (const dsc::ShapeKind k : dsc::allShapeKinds()) std::fprintf(stderr, " %s", dsc::shapeName(k));
     std::fprintf(stderr, "\n");
     return 2;
   }
-  struct Query {
-    std::shared_ptr<fcl::ShapeBase<double>> shape;
-    fcl::Transform3<double> X_WD, X_WS;
-  };
-  std::vector<Query> queries;
-  for (const dsc::CaseSpec& c : dsc::makeCases(*kind, kCases, kSeed)) {
-    queries.push_back({dsc::makeShape<double>(c.shape), dsc::toS<double>(c.X_WD), dsc::toS<double>(c.X_WS)});
-  }
-  double sum = 0.0;
-  for (int pass = 0; pass < kPasses; ++pass) {
-    for (const Query& q : queries) sum += distanceTo(*q.shape, q.X_WD, q.X_WS);
-  }
-  std::printf("%d calls, sum of distances %.17g\n", kCases * kPasses, sum);
+  const double sum = in_float ? sumOfDistances<float>(*kind, passes)
+                              : sumOfDistances<double>(*kind, passes);
+  std::printf("%d calls, sum of distances %.17g\n", kCases * passes, sum);
   return 0;
 }

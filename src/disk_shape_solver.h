@@ -134,10 +134,25 @@ struct DiskInShape {
            std::abs(v.squaredNorm() - 1.0) <= kOrthonormalInDouble &&
            std::abs(u.dot(v)) <= kOrthonormalInDouble;
   }
-  /// The disk with centre c, radius r and normal n / |n|, in orthonormal axes
-  /// (u made orthogonal to the normal, Gram-Schmidt; v = n x u), as the
-  /// disk-disk solvers rebuild a rotation (orthonormalFrameWithNormalOf).
+  /// The disk with centre c, radius r, plane span(u, v) and normal n / |n|, in
+  /// orthonormal axes. Axes within kTaylorInverseSqrtRange of orthonormal (all
+  /// that a float pose gives) are made orthonormal symmetrically (Loewdin):
+  /// [u' v'] = [u v] G^(-1/2), G = I + E the Gram matrix of u, v, by its
+  /// Taylor polynomial I - E/2 + 3E^2/8 (error 5|E|^3/16, under double's
+  /// rounding), and n' = u' x v'. The plane, hence the disk, is the same; the
+  /// three inner products run side by side, so the axes wait on a short chain
+  /// of arithmetic and no square root. Others by Gram-Schmidt (u made
+  /// orthogonal to the normal, v = n x u), as the disk-disk solvers rebuild a
+  /// rotation (orthonormalFrameWithNormalOf).
   DiskInShape withOrthonormalAxes() const {
+    const double e_u = u.squaredNorm() - 1.0, e_v = v.squaredNorm() - 1.0, e_uv = u.dot(v);
+    if (std::max({std::abs(e_u), std::abs(e_v), std::abs(e_uv)}) <= kTaylorInverseSqrtRange) {
+      const double m_uu = 1.0 - 0.5 * e_u + 0.375 * (e_u * e_u + e_uv * e_uv);
+      const double m_vv = 1.0 - 0.5 * e_v + 0.375 * (e_v * e_v + e_uv * e_uv);
+      const double m_uv = e_uv * (0.375 * (e_u + e_v) - 0.5);
+      const Vec3 unit_u = m_uu * u + m_uv * v, unit_v = m_uv * u + m_vv * v;
+      return DiskInShape{c, unit_u, unit_v, unit_u.cross(unit_v), r};
+    }
     const Vec3 unit_n = n * inverseSqrtNearOne(n.squaredNorm());
     const Vec3 in_plane = u - unit_n.dot(u) * unit_n;
     const Vec3 unit_u = in_plane * inverseSqrtNearOne(in_plane.squaredNorm());
