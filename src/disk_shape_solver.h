@@ -135,8 +135,9 @@ struct DiskInShape {
            std::abs(u.dot(v)) <= kOrthonormalInDouble;
   }
   /// The disk with centre c, radius r, plane span(u, v) and normal n / |n|, in
-  /// orthonormal axes. Axes within kTaylorInverseSqrtRange of orthonormal (all
-  /// that a float pose gives) are made orthonormal symmetrically (Loewdin):
+  /// orthonormal axes. Axes within kTaylorInverseSqrtRange of orthonormal (a
+  /// float pose orthonormal to float's rounding gives ~1e-7) are made
+  /// orthonormal symmetrically (Loewdin):
   /// [u' v'] = [u v] G^(-1/2), G = I + E the Gram matrix of u, v, by its
   /// Taylor polynomial I - E/2 + 3E^2/8 (error 5|E|^3/16, under double's
   /// rounding), and n' = u' x v'. The plane, hence the disk, is the same; the

@@ -1,6 +1,8 @@
-// Disk - fcl::Cone: the generic solver with the cone's projection, computed in the
-// meridian half-plane (a right triangle) and turned about the axis, and its
-// support (apex or base rim). docs/disk_shape_distance.md, section 4. The
+// Disk - fcl::Cone: the apex (closed form) or the base (the disk-disk solver)
+// where their certificates close, else the generic solver with the cone's
+// projection, computed in the meridian half-plane (a right triangle) and turned
+// about the axis, and its support (apex or base rim).
+// docs/disk_shape_distance.md, section 4. The
 // contact's directions make its depth the exact penetration depth
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
