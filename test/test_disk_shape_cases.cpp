@@ -16,6 +16,7 @@
 #include <random>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "reference_disk_shape.h"
@@ -173,7 +174,7 @@ void expectConeClosedForm(const Transform3d& X_WC, double distance, const Vector
   EXPECT_EQ(result.iterations, 0);
 }
 
-TEST(DiskShapeCases, ConeApexAndBaseRimInClosedForm) {
+TEST(DiskShapeCases, ConeApexSideAndBaseRimInClosedForm) {
   for (const bool in_float : {false, true}) {
     const auto expect = in_float ? expectConeClosedForm<float> : expectConeClosedForm<double>;
     // Disk r = 1 at the origin, normal +z; cone r = 0.5, lz = 1 (apex at +0.5
@@ -194,6 +195,18 @@ TEST(DiskShapeCases, ConeApexAndBaseRimInClosedForm) {
     const Transform3d X_WD = at(centre, Vector3d::UnitY());
     expect(X_WD.inverse(), std::sqrt(4.04) - 1,
            X_WD.inverse() * (centre - (centre - B).normalized()), X_WD.inverse() * B);
+    // The same vertical disk facing the slant side from (2h, R) / L = (1, 0.5) /
+    // sqrt(1.25) (the side's outward normal in the plane y = 0): centred
+    // (distance + 1) along it from the side's point F, its point nearest the
+    // triangle is F + distance * normal, F's foot. A centre above the apex
+    // (F halfway down the side) and one beside the cone (F three quarters down).
+    const Vector3d side_normal = Vector3d(1, 0, 0.5).normalized();
+    for (const auto& [along, distance] : {std::pair{0.5, 0.3}, std::pair{0.75, 0.1}}) {
+      const Vector3d F = Vector3d(0, 0, 0.5) + along * Vector3d(0.5, 0, -1);
+      const Transform3d X_WD_side = at(F + (distance + 1) * side_normal, Vector3d::UnitY());
+      expect(X_WD_side.inverse(), distance, X_WD_side.inverse() * (F + distance * side_normal),
+             X_WD_side.inverse() * F);
+    }
   }
 }
 

@@ -1,9 +1,9 @@
-// Disk - fcl::Cone: the apex (closed form) or the base (the disk-disk solver)
-// where their certificates close, else the generic solver with the cone's
-// projection, computed in the meridian half-plane (a right triangle) and turned
-// about the axis, and its support (apex or base rim).
-// docs/disk_shape_distance.md, section 4. The
-// contact's directions make its depth the exact penetration depth
+// Disk - fcl::Cone: the apex (closed form), the slant side (Newton along the
+// rim) or the base (the disk-disk solver) where their certificates close, else
+// the generic solver with the cone's projection, computed in the meridian
+// half-plane (a right triangle) and turned about the axis, and its support
+// (apex or base rim). docs/disk_shape_distance.md, section 4. The contact's
+// directions make its depth the exact penetration depth
 // (docs/penetration_depth.md, section 7).
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
@@ -143,6 +143,19 @@ void addConeSideCandidates(const DiskInShape& disk, double radius, double half_l
   });
 }
 
+/// The slant side's closed form (ConeTraits::sideAgainstDisk) takes at most
+/// this many Newton steps along the rim, and has converged once a step is
+/// below kSideAngleTolerance radians: Newton's error after a step s is then
+/// about s^2 (the rim's curvatures relative to the radius are of order 1),
+/// far under double's resolution of the angle.
+constexpr int kMaxSideNewtonSteps = 8;
+constexpr double kSideAngleTolerance = 1e-9;
+
+/// Where the disk's point least over the side's line has its foot, when not
+/// on the side: past the apex or past the base's rim, whose own cases are
+/// then the likely ones.
+enum class SideEnd { none, apex, base };
+
 template <typename S>
 struct ConeTraits {
   static bool valid(const fcl::Cone<S>& cone) {
@@ -155,14 +168,14 @@ struct ConeTraits {
   static ConeTarget target(const fcl::Cone<S>& cone) {
     return ConeTarget{double(cone.radius), 0.5 * double(cone.lz)};
   }
-  /// Two exact cases, each tried where the disk's centre says it is likely
-  /// (docs/disk_shape_distance.md, section 4); what neither settles goes to the
+  /// Three exact cases, each tried where the disk's centre says it is likely
+  /// (docs/disk_shape_distance.md, section 4); what none settles goes to the
   /// generic solver. `disk`'s axes are orthonormal (solvedDiskInShape).
-  /// - the apex, for a centre above it: the disk's point p nearest the apex
-  ///   (closed form) is optimal when p - apex lies in the cone's normal cone
-  ///   at the apex, radius |(p - apex)_xy| <= 2 half_length (p - apex)_z (the
-  ///   apex is then p's nearest cone point: the KKT conditions of the convex
-  ///   pair); the certificate along the pair proves it;
+  /// - the apex, for a centre above it (apexAgainstDisk);
+  /// - the slant side (sideAgainstDisk), for a centre above the apex where the
+  ///   apex fails and for a centre beside the cone where the base is not
+  ///   tried; a disk whose least point over the side's line has its foot past
+  ///   the base's rim or the apex goes to that end's case;
   /// - the base, a disk (diskAgainstFlatEnd: exact where the certificate along
   ///   the disk-base pair closes), for a centre beyond the base's plane, or
   ///   beside the cone with its nearest cone point at the base's rim (in the
@@ -172,10 +185,21 @@ struct ConeTraits {
     const ConeTarget cone_target = target(cone);
     const double h = cone_target.half_length, radius = cone_target.radius;
     const Vec3& c = disk.c;
-    if (c.z() > h) return apexAgainstDisk(cone_target, disk, scale);
     const auto against_base = [&] {
       return diskAgainstFlatEnd(disk, cone_target, cone_target.flatEnds()[0], scale);
     };
+    // The side, else the end its least point lies past.
+    const auto against_side = [&](bool apex_tried) {
+      SideEnd past = SideEnd::none;
+      const LeafToDisk side = sideAgainstDisk(cone_target, disk, scale, &past);
+      if (past == SideEnd::base) return against_base();
+      if (past == SideEnd::apex && !apex_tried) return apexAgainstDisk(cone_target, disk, scale);
+      return side;
+    };
+    if (c.z() > h) {
+      const LeafToDisk apex = apexAgainstDisk(cone_target, disk, scale);
+      return apex.exact ? apex : against_side(/*apex_tried=*/true);
+    }
     if (c.z() < -h) return against_base();
     const double centre_rho = std::sqrt(c.x() * c.x() + c.y() * c.y());
     const bool nearest_base_rim = (centre_rho - radius) * radius >= 2.0 * h * (c.z() + h);
@@ -183,11 +207,14 @@ struct ConeTraits {
     if (centre_rho > radius && nearest_base_rim && c.z() - disk.r * normal_tilt < -h) {
       return against_base();
     }
-    return LeafToDisk{};
+    return against_side(/*apex_tried=*/false);
   }
-  /// The apex case of closedForm; not exact where the disk's nearest point to
-  /// the apex is not the cone's nearest, or within touching of it (overlaps
-  /// are the generic solver's to decide).
+  /// The apex case of closedForm: the disk's point p nearest the apex
+  /// (closed form) is optimal when p - apex lies in the cone's normal cone at
+  /// the apex, radius |(p - apex)_xy| <= 2 half_length (p - apex)_z (the apex
+  /// is then p's nearest cone point: the KKT conditions of the convex pair);
+  /// the certificate along the pair proves it. Not exact where that fails, or
+  /// within touching (overlaps are the generic solver's to decide).
   static LeafToDisk apexAgainstDisk(const ConeTarget& cone_target, const DiskInShape& disk,
                                     double scale) {
     const Vec3 apex(0.0, 0.0, cone_target.half_length);
@@ -201,6 +228,94 @@ struct ConeTraits {
     if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
     const double lower = certificateAlong(cone_target, disk, 0.0, Vec3(-away));
     return certifiedOrBound(lower, upper, p, apex, scale);
+  }
+  /// The slant side case of closedForm. The solid cone lies in {s <= 0}, s(x) =
+  /// (2h rho(x) + R (z(x) - h)) / L the signed distance of x's meridian point
+  /// (rho, z) to the side's line (L = |(2h, R)|, rho the distance from the
+  /// axis), and s is convex and 1-Lipschitz, so dist(x, cone) >= s(x) for every
+  /// x: where the disk's point p minimising s has its meridian foot on the side
+  /// (between the apex and the base's rim) at s(p) > 0, that foot is p's nearest
+  /// cone point and (p, foot) the nearest pair. p is sought on the rim (s is
+  /// convex and smooth off the axis, so over the disk it is least on the rim,
+  /// or where the disk meets the axis, which is left to the generic solver) by
+  /// Newton in the rim angle on phi(theta) = 2h rho + R z, from the rim point
+  /// down phi's gradient at the centre; the certificate along the pair proves
+  /// it. Not exact (the generic solver then answers) where the iteration meets
+  /// no positive curvature, does not converge within kMaxSideNewtonSteps, or
+  /// ends off the side or within touching of it.
+  static LeafToDisk sideAgainstDisk(const ConeTarget& cone_target, const DiskInShape& disk,
+                                    double scale, SideEnd* past) {
+    const double h = cone_target.half_length, radius = cone_target.radius;
+    const double height = 2.0 * h, slant = Vec2(height, radius).norm();
+    const double r = disk.r;
+    // The rim point x(theta) = c + r (cos u + sin v): its horizontal part w
+    // and its height z are affine in (cos, sin).
+    const Vec2 c_xy(disk.c.x(), disk.c.y()), u_xy(disk.u.x(), disk.u.y()),
+        v_xy(disk.v.x(), disk.v.y());
+    const Vec2 axes_z(disk.u.z(), disk.v.z());
+    const double c_rho = c_xy.norm();
+    if (!(c_rho > 0.0 && slant > 0.0)) return LeafToDisk{};
+    const Vec2 descent =
+        -(height / c_rho) * Vec2(u_xy.dot(c_xy), v_xy.dot(c_xy)) - radius * axes_z;
+    const double descent_length = descent.norm();
+    if (!(descent_length > 0.0)) return LeafToDisk{};
+    Vec2 radial = descent / descent_length;
+    bool converged = false;
+    for (int step = 0; step < kMaxSideNewtonSteps && !converged; ++step) {
+      // phi' = 2h rho' + R z', phi'' = 2h rho'' + R z'', with w' along the
+      // tangent and w'' = -(w - c_xy), z'' = -(z - c_z).
+      const Vec2 tangent(-radial.y(), radial.x());
+      const Vec2 from_centre = r * (radial.x() * u_xy + radial.y() * v_xy);
+      const Vec2 w = c_xy + from_centre;
+      const Vec2 w_turn = r * (tangent.x() * u_xy + tangent.y() * v_xy);
+      const double rho_squared = w.squaredNorm();
+      if (!(rho_squared > 0.0)) return LeafToDisk{};
+      // 1 / rho as sqrt(rho^2) (1 / rho^2): the two run side by side.
+      const double inverse_rho_squared = 1.0 / rho_squared;
+      const double inverse_rho = std::sqrt(rho_squared) * inverse_rho_squared;
+      const double rho = rho_squared * inverse_rho;
+      const double z_offset = r * radial.dot(axes_z);  // z - c_z
+      // An iterate at or below the side's line: s is least below it, so the
+      // side is not the nearest feature (an overlap, or the base's rim).
+      if (!(height * rho + radius * (disk.c.z() + z_offset - h) >
+            kShapeTouchingTolerance * scale * slant)) {
+        return LeafToDisk{};
+      }
+      // slope = phi', curvature = phi'' (lengths).
+      const double w_w_turn = w.dot(w_turn);
+      const double slope = height * w_w_turn * inverse_rho + radius * r * tangent.dot(axes_z);
+      const double rho_curvature = w_turn.squaredNorm() - w.dot(from_centre) -
+                                   w_w_turn * w_w_turn * inverse_rho_squared;  // rho rho''
+      const double curvature = height * inverse_rho * rho_curvature - radius * z_offset;
+      if (!(curvature > 0.0 && std::abs(slope) <= kShapeMaxRimStep * curvature)) {
+        return LeafToDisk{};
+      }
+      // The turn by dtheta = -slope / curvature as the Cayley rotation over
+      // one denominator (as the disk-disk rim iteration): one division.
+      const double four_curvature_squared = 4.0 * curvature * curvature;
+      const double inverse = 1.0 / (four_curvature_squared + slope * slope);
+      const double cos = (four_curvature_squared - slope * slope) * inverse;
+      const double sin = -4.0 * slope * curvature * inverse;
+      radial = cos * radial + sin * tangent;
+      converged = std::abs(slope) <= kSideAngleTolerance * curvature;
+    }
+    if (!converged) return LeafToDisk{};
+    const Vec3 p = disk.point(r * radial);
+    const double rho = std::sqrt(p.x() * p.x() + p.y() * p.y());
+    const double along = (radius * rho - height * (p.z() - h)) / slant;  // from the apex
+    const double side_distance = (height * rho + radius * (p.z() - h)) / slant;
+    if (!(rho > 0.0 && side_distance > kShapeTouchingTolerance * scale)) return LeafToDisk{};
+    if (!(along >= 0.0 && along <= slant)) {
+      *past = along < 0.0 ? SideEnd::apex : SideEnd::base;
+      return LeafToDisk{};
+    }
+    // The foot: (rho, z) moved by side_distance along the side's outward
+    // normal (2h, R) / L, turned back about the axis.
+    const double along_normal = side_distance / slant;
+    const double shrink = 1.0 - along_normal * height / rho;
+    const Vec3 q(shrink * p.x(), shrink * p.y(), p.z() - along_normal * radius);
+    const double lower = certificateAlong(cone_target, disk, 0.0, Vec3(q - p));
+    return certifiedOrBound(lower, (q - p).norm(), p, q, scale);
   }
   /// The directions among which the shortest separating translation lies
   /// (shortestSeparation adds the disk's normals and both signs), so the contact's
