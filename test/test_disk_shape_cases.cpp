@@ -153,11 +153,6 @@ TEST(DiskShapeCases, HandDerivedDistances) {
                                         kIdentity).distance, 0.0);
 }
 
-// A needle: an ellipsoid with one semi-axis of 0.1 and two far below any
-// scene length (1e-8 .. 1e-140), crossing or passing a disk in random tilts.
-// Its projection's root t is then far below e_max^2: the secular iteration
-// must close its bracket relative to the tiny axes, or the shape point lands
-// off the needle (0.1 off, fuzz_disk_shapes; corpus regression-ellipsoid-needle).
 // The cone's closed forms (ConeTraits::closedForm), each on a pose derived by
 // hand, in both float and double: they answer without the generic solver
 // (iterations 0) with the nearest points.
@@ -210,6 +205,11 @@ TEST(DiskShapeCases, ConeApexSideAndBaseRimInClosedForm) {
   }
 }
 
+// A needle: an ellipsoid with one semi-axis of 0.1 and two far below any
+// scene length (1e-8 .. 1e-140), crossing or passing a disk in random tilts.
+// Its projection's root t is then far below e_max^2: the secular iteration
+// must close its bracket relative to the tiny axes, or the shape point lands
+// off the needle (0.1 off, fuzz_disk_shapes; corpus regression-ellipsoid-needle).
 TEST(DiskShapeCases, NeedleEllipsoidPointsStayOnTheNeedle) {
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
