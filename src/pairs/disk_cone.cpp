@@ -235,14 +235,16 @@ struct ConeTraits {
   /// axis), and s is convex and 1-Lipschitz, so dist(x, cone) >= s(x) for every
   /// x: where the disk's point p minimising s has its meridian foot on the side
   /// (between the apex and the base's rim) at s(p) > 0, that foot is p's nearest
-  /// cone point and (p, foot) the nearest pair. p is sought on the rim (s is
-  /// convex and smooth off the axis, so over the disk it is least on the rim,
-  /// or where the disk meets the axis, which is left to the generic solver) by
-  /// Newton in the rim angle on phi(theta) = 2h rho + R z, from the rim point
-  /// down phi's gradient at the centre; the certificate along the pair proves
-  /// it. Not exact (the generic solver then answers) where the iteration meets
-  /// no positive curvature, does not converge within kMaxSideNewtonSteps, or
-  /// ends off the side or within touching of it.
+  /// cone point and (p, foot) the nearest pair. p is sought on the rim (s's
+  /// level sets are cones with apices on the axis, so in a plane s is
+  /// stationary off the axis only along a line on which it is constant: over
+  /// the disk it is least on the rim, or where the disk meets the axis, which
+  /// is left to the generic solver) by Newton in the rim angle on
+  /// phi(theta) = 2h rho + R z, from the rim point down phi's gradient at the
+  /// centre; the certificate along the pair proves it. Not exact (the generic
+  /// solver then answers) where an iterate reaches the side's line, the
+  /// iteration meets no positive curvature or does not converge within
+  /// kMaxSideNewtonSteps, or its foot is off the side (*past says which end).
   static LeafToDisk sideAgainstDisk(const ConeTarget& cone_target, const DiskInShape& disk,
                                     double scale, SideEnd* past) {
     const double h = cone_target.half_length, radius = cone_target.radius;
