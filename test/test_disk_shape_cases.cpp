@@ -153,20 +153,26 @@ TEST(DiskShapeCases, HandDerivedDistances) {
                                         kIdentity).distance, 0.0);
 }
 
-// The cone's closed forms (ConeTraits::closedForm), each on a pose derived by
-// hand, in both float and double: they answer without the generic solver
-// (iterations 0) with the nearest points.
+// The closed forms of the cone and the cylinder (their Traits::closedForm),
+// each on a pose derived by hand, in both float and double: they answer
+// without the generic solver (iterations 0) with the nearest points. The disk
+// has radius 1.
+template <typename S, typename Shape>
+void expectClosedForm(const Transform3d& X_WD, const Shape& shape, const Transform3d& X_WS,
+                      double distance, const Vector3d& p_disk, const Vector3d& p_shape) {
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
+  const auto result = fcl_disk::diskShapeDistance(S(1), X_WD.cast<S>(), shape, X_WS.cast<S>());
+  EXPECT_NEAR(result.distance, distance, tolerance);
+  EXPECT_NEAR((result.p_W_disk.template cast<double>() - p_disk).norm(), 0.0, tolerance);
+  EXPECT_NEAR((result.p_W_shape.template cast<double>() - p_shape).norm(), 0.0, tolerance);
+  EXPECT_LE(result.certifiedGap(), S(tolerance));
+  EXPECT_EQ(result.iterations, 0);
+}
+
 template <typename S>
 void expectConeClosedForm(const Transform3d& X_WC, double distance, const Vector3d& p_disk,
                           const Vector3d& p_cone) {
-  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
-  const auto result = fcl_disk::diskShapeDistance(S(1), fcl::Transform3<S>::Identity(),
-                                                  fcl::Cone<S>(S(0.5), S(1)), X_WC.cast<S>());
-  EXPECT_NEAR(result.distance, distance, tolerance);
-  EXPECT_NEAR((result.p_W_disk.template cast<double>() - p_disk).norm(), 0.0, tolerance);
-  EXPECT_NEAR((result.p_W_shape.template cast<double>() - p_cone).norm(), 0.0, tolerance);
-  EXPECT_LE(result.certifiedGap(), S(tolerance));
-  EXPECT_EQ(result.iterations, 0);
+  expectClosedForm<S>(kIdentity, fcl::Cone<S>(S(0.5), S(1)), X_WC, distance, p_disk, p_cone);
 }
 
 TEST(DiskShapeCases, ConeApexSideAndBaseRimInClosedForm) {
@@ -203,6 +209,55 @@ TEST(DiskShapeCases, ConeApexSideAndBaseRimInClosedForm) {
              X_WD_side.inverse() * F);
     }
   }
+}
+
+// The cylinder r = 0.5, lz = 2 (caps at z = +-1) at the origin, against disks
+// in planes containing the y axis: both are symmetric about y = 0, and a disk
+// point off that plane is farther from the axis than its projection onto it
+// at the same height, so a nearest pair lies in y = 0, where the cylinder is
+// the rectangle |x| <= 0.5, |z| <= 1 and the disk the diameter c + t a,
+// |t| <= 1, a = (-+1/2, 0, sqrt(3)/2) (tilted 30 degrees from the vertical).
+template <typename S>
+void expectCylinderCasesInClosedForm() {
+  const fcl::Cylinder<S> cylinder(S(0.5), S(2));
+  // Centre (1.2, 0, 1.5), beyond the top cap, a = (1/2, 0, sqrt(3)/2): the
+  // diameter's lower end (0.7, 0, 1.5 - sqrt(3)/2) is below the cap's plane,
+  // 0.2 beside the wall, and x grows from it along the diameter: the side
+  // wall, 0.2.
+  const Vector3d down_inwards(0.5, 0, std::sqrt(3.0) / 2);
+  const Vector3d beyond(1.2, 0, 1.5), low = beyond - down_inwards;
+  expectClosedForm<S>(at(beyond, down_inwards.cross(Vector3d::UnitY())), cylinder, kIdentity,
+                      0.2, low, Vector3d(0.5, 0, low.z()));
+  // Centre (1.2, 0, 0.8), between the caps' planes, a = (-1/2, 0, sqrt(3)/2),
+  // the diameter crossing the top one: from the cap's rim point (0.5, 0, 1)
+  // the line (0.7, -0.2) + t a (in (x - 0.5, z - 1)) passes nearest at
+  // t = 0.35 + 0.1 sqrt(3), inside the diameter and above the cap, at
+  // 0.35 sqrt(3) - 0.1; the wall's points are farther (x - 0.5 >= 0.58 below
+  // the plane): the cap's rim.
+  const Vector3d up_inwards(-0.5, 0, std::sqrt(3.0) / 2);
+  const Vector3d between(1.2, 0, 0.8), rim(0.5, 0, 1);
+  expectClosedForm<S>(at(between, up_inwards.cross(Vector3d::UnitY())), cylinder, kIdentity,
+                      0.35 * std::sqrt(3.0) - 0.1,
+                      between + (0.35 + 0.1 * std::sqrt(3.0)) * up_inwards, rim);
+  // A vertical disk (normal +y) centred at (1, 0, 1.2) meets the top cap's
+  // plane along x in [1 - sqrt(0.96), 1 + sqrt(0.96)], inside the cap from
+  // x = 0.0202 to 0.5: distance 0, with a point common to both.
+  const auto meeting = fcl_disk::diskShapeDistance(
+      S(1), at({1, 0, 1.2}, Vector3d::UnitY()).cast<S>(), cylinder, fcl::Transform3<S>::Identity());
+  EXPECT_EQ(meeting.distance, S(0));
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
+  for (const auto& point : {meeting.p_W_disk, meeting.p_W_shape}) {
+    const Vector3d x = point.template cast<double>();
+    EXPECT_NEAR(x.y(), 0.0, tolerance);
+    EXPECT_LE(Vector3d(x.x() - 1, 0, x.z() - 1.2).norm(), 1 + tolerance);
+    EXPECT_LE(std::abs(x.x()), 0.5 + tolerance);
+    EXPECT_LE(std::abs(x.z()), 1 + tolerance);
+  }
+}
+
+TEST(DiskShapeCases, CylinderWallCapRimAndCommonPointInClosedForm) {
+  expectCylinderCasesInClosedForm<double>();
+  expectCylinderCasesInClosedForm<float>();
 }
 
 // A needle: an ellipsoid with one semi-axis of 0.1 and two far below any

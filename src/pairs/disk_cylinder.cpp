@@ -51,6 +51,52 @@ struct CylinderTarget {
   }
 };
 
+/// Where the disk crosses the plane z = side * h of a cap (docs/disk_shape_distance.md,
+/// section 4): the chord's point m nearest the cylinder's axis, and whether m is
+/// the point nearest the axis of the disk's part on the near side (side * z <= h).
+/// That part's nearest point to the axis is where dist(., cylinder) is least
+/// over it while it stays between the caps' planes and off the cylinder (there
+/// dist = rho - radius); dist is convex, so that least point is the whole disk's
+/// when it is off the plane (the side wall holds the nearest point), and the
+/// whole disk's nearest point lies at or beyond the plane when it is m (the cap
+/// does). The test is m's KKT condition: rho (convex) does not decrease from m
+/// into the near part, along the disk's steepest descent in side * z for a
+/// chord-interior m, along the rim for a chord end.
+struct CapPlaneChord {
+  bool crosses = false;       ///< the disk meets the plane along a chord
+  Vec3 nearest_axis;          ///< m (crosses only)
+  bool least_at_chord = false;  ///< m is the near part's point nearest the axis
+};
+
+CapPlaneChord capPlaneChord(const DiskInShape& disk, double side, double h) {
+  CapPlaneChord chord;
+  // Z = e_z - n n_z spans the disk's steepest ascent in z (Z.z = |Z|^2 = 1 - n_z^2);
+  // the plane meets the disk's plane along c + k Z + tau w, w = n x e_z horizontal.
+  const Vec3& n = disk.n;
+  const double tilt_squared = n.x() * n.x() + n.y() * n.y();
+  const double rise = side * h - disk.c.z();
+  if (!(rise * rise < disk.r * disk.r * tilt_squared)) return chord;
+  chord.crosses = true;
+  const Vec3 Z(-n.x() * n.z(), -n.y() * n.z(), tilt_squared);
+  const Vec3 w(n.y(), -n.x(), 0.0);
+  const double k = rise / tilt_squared;
+  const Vec3 midpoint = disk.c + k * Z;
+  // |tau| |w| <= sqrt(r^2 - k^2 |Z|^2), |w|^2 = |Z|^2 = tilt_squared.
+  const double half_span = std::sqrt((disk.r * disk.r - k * rise) / tilt_squared);
+  const double tau_free = -(midpoint.x() * w.x() + midpoint.y() * w.y()) / tilt_squared;
+  const double tau = std::clamp(tau_free, -half_span, half_span);
+  chord.nearest_axis = midpoint + tau * w;
+  // Into the near part: down the steepest descent, or along the rim at a chord end.
+  Vec3 inwards = -side * Z;
+  if (tau != tau_free) {
+    inwards = n.cross(chord.nearest_axis - disk.c);
+    if (side * inwards.z() > 0.0) inwards = -inwards;
+  }
+  chord.least_at_chord =
+      chord.nearest_axis.x() * inwards.x() + chord.nearest_axis.y() * inwards.y() >= 0.0;
+  return chord;
+}
+
 template <typename S>
 struct CylinderTraits {
   static bool valid(const fcl::Cylinder<S>& cylinder) {
@@ -72,30 +118,45 @@ struct CylinderTraits {
   ///   certificate are the cylinder's;
   /// - a cap (diskAgainstFlatEnd): where the disk-disk pair of the disk and
   ///   a cap is the cylinder's, the certificate along it closes.
-  /// The cap facing the disk's centre is tried first when the centre lies
-  /// beyond that cap's plane, then the side wall, then the cap beyond which
-  /// the capsule's point lies. What neither settles (an optimum at a cap's
-  /// rim seen from the side, where the certificate along one pair can stay
-  /// open) goes to the generic solver. `disk`'s axes are orthonormal
+  /// Which to try first is read off where the disk crosses the caps' planes
+  /// (capPlaneChord): a chord point within the radius is a common point; a cap
+  /// goes first when the disk lies wholly beyond its plane or its chord holds
+  /// the near part's point nearest the axis, else the side wall, then the cap
+  /// beyond which the capsule's point lies. What neither settles (an optimum
+  /// at a cap's rim seen from the side, where the certificate along one pair
+  /// can stay open) goes to the generic solver. `disk`'s axes are orthonormal
   /// (solvedDiskInShape).
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Cylinder<S>& cylinder,
                                double scale) {
     const CylinderTarget cylinder_target = target(cylinder);
-    const double h = cylinder_target.half_length;
+    const double h = cylinder_target.half_length, radius = cylinder_target.radius;
     const auto against_cap = [&](double side) {
-      return diskAgainstFlatEnd(disk, cylinder_target, FlatEnd{side * h, cylinder_target.radius},
-                                scale);
+      return diskAgainstFlatEnd(disk, cylinder_target, FlatEnd{side * h, radius}, scale);
     };
     const double centre_side = disk.c.z() < 0.0 ? -1.0 : 1.0;
-    const bool beyond_cap = std::abs(disk.c.z()) > h;
-    if (beyond_cap) {
-      const LeafToDisk cap = against_cap(centre_side);
+    double cap_first = 0.0;  // the side of the cap tried first, 0 for the wall
+    for (const double side : {centre_side, -centre_side}) {
+      const CapPlaneChord chord = capPlaneChord(disk, side, h);
+      if (chord.crosses) {
+        const Vec3& m = chord.nearest_axis;
+        if (m.x() * m.x() + m.y() * m.y() <= radius * radius) {
+          const Vec3 on_cap(m.x(), m.y(), side * h);
+          return certifiedOrBound(0.0, 0.0, on_cap, on_cap, scale);
+        }
+        if (chord.least_at_chord) cap_first = side;
+      } else if (side * disk.c.z() > h) {
+        cap_first = side;  // wholly beyond this cap's plane
+      }
+      if (cap_first != 0.0) break;
+    }
+    if (cap_first != 0.0) {
+      const LeafToDisk cap = against_cap(cap_first);
       if (cap.exact) return cap;
     }
-    const DiskShapeSolution wall = solveDiskCapsule(disk, cylinder_target.radius, h);
+    const DiskShapeSolution wall = solveDiskCapsule(disk, radius, h);
     if (std::abs(wall.q.z()) <= h) return exactLeafOf(wall);
     const double wall_side = wall.q.z() < 0.0 ? -1.0 : 1.0;
-    if (!beyond_cap || wall_side != centre_side) return against_cap(wall_side);
+    if (wall_side != cap_first) return against_cap(wall_side);
     return LeafToDisk{};
   }
 
