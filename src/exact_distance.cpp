@@ -522,30 +522,35 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
                                   Vec2* radial_io, int* steps) {
   const Mat3& R = pair.R;
   const double r1 = pair.r1, r2 = pair.r2;
+  const double r1_squared = r1 * r1, inverse_r2_squared = 1.0 / (r2 * r2);
   const Vec2 y0 = pair.c1_in_frame2.head<2>();
   const double h0 = pair.c1_in_frame2.z();
   const double gap_tolerance = kGapTolerance * scale;
   const double certify_below = kCertifyStep * scale;
-  // radial and its images in disk 2's frame, and the point's y, h, 1/rho, k = 1 - r2/rho, psi.
+  // The point x = r1 radial in disk 2's frame, y = offset2 + y0 and h =
+  // offset_height + h0, with (offset2, offset_height) = r1 (R_xy^T radial,
+  // m2.radial), and the same images of r1 t, t = perp(radial). Every length
+  // below is r1 times the document's sigma, kappa and outward (the Cayley
+  // turn and the step dtheta = sigma / kappa are ratios of them).
   Vec2 radial = *radial_io;
-  Vec2 radial2(R(0, 0) * radial.x() + R(1, 0) * radial.y(),
-               R(0, 1) * radial.x() + R(1, 1) * radial.y());
-  double radial_height = R(0, 2) * radial.x() + R(1, 2) * radial.y();
-  Vec2 y = r1 * radial2 + y0;
-  double h = r1 * radial_height + h0;
-  // Over disk 2's rim proj_K2 pulls y onto the circle: nearest = (r2 / rho) y;
-  // over its face it is y itself (to_rim = 1, inverse_rho unused).
+  Vec2 offset2(r1 * (R(0, 0) * radial.x() + R(1, 0) * radial.y()),
+               r1 * (R(0, 1) * radial.x() + R(1, 1) * radial.y()));
+  double offset_height = r1 * (R(0, 2) * radial.x() + R(1, 2) * radial.y());
+  Vec2 y = offset2 + y0;
+  double h = offset_height + h0;
+  // Over disk 2's rim proj_K2 pulls y onto the circle: nearest = to_rim y with
+  // to_rim = r2 / rho, computed as sqrt(rho^2) * (r2 / rho^2) (a square root
+  // and a division side by side); over its face nearest = y (to_rim = 1).
   const double rho_squared = y.squaredNorm();
   bool over_face = !(rho_squared > r2 * r2);
-  double inverse_rho = over_face ? 0.0 : std::sqrt(rho_squared) * (1.0 / rho_squared);
-  double to_rim = over_face ? 1.0 : r2 * inverse_rho;
-  double k = 1.0 - to_rim;
-  double psi = 0.5 * (k * k * rho_squared + h * h);
+  double to_rim = over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
+  double psi = 0.5 * ((1.0 - to_rim) * (1.0 - to_rim) * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
-  // rimRim's `converging` test for a step dtheta with curvature kappa.
+  // rimRim's `converging` test for a step dtheta with curvature kappa (r1 times
+  // the document's).
   const auto converging = [&](double dtheta, double kappa, double distance) {
     return dtheta * r1 <= certify_below &&
-           0.5 * r1 * kappa * dtheta * dtheta <= distance * gap_tolerance;
+           0.5 * kappa * dtheta * dtheta <= distance * gap_tolerance;
   };
   // The certificate at the current point, once tried, and the distance |q - x|
   // it is compared with (the points themselves, not psi: for a rotation that
@@ -575,20 +580,26 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
         if (certified()) return answer(step);
       }
     }
-    // alongRim over disk 2's rim, with the tangent's images.
-    const Vec2 tangent2(R(1, 0) * radial.x() - R(0, 0) * radial.y(),
-                        R(1, 1) * radial.x() - R(0, 1) * radial.y());
-    const double tangent_height = R(1, 2) * radial.x() - R(0, 2) * radial.y();
-    const double sigma = k * y.dot(tangent2) + h * tangent_height;
-    const double outward = -(k * y.dot(radial2) + h * radial_height);
+    // alongRim over disk 2's rim, with the tangent's images, arranged so that
+    // to_rim enters each of sigma, outward and kappa once, last: with k = 1 -
+    // to_rim, sigma = k y.t2 + h t_h = (y.t2 + h t_h) - to_rim y.t2, and
+    // (r2 / rho) (y x t2 / rho)^2 = to_rim^3 (y x t2)^2 / r2^2.
+    const Vec2 tangent2(r1 * (R(1, 0) * radial.x() - R(0, 0) * radial.y()),
+                        r1 * (R(1, 1) * radial.x() - R(0, 1) * radial.y()));
+    const double tangent_height = r1 * (R(1, 2) * radial.x() - R(0, 2) * radial.y());
+    const double y_along = y.dot(tangent2), y_out = y.dot(offset2);
+    const double sigma = over_face ? h * tangent_height
+                                   : (y_along + h * tangent_height) - to_rim * y_along;
+    const double outward =
+        over_face ? -h * offset_height : to_rim * y_out - (y_out + h * offset_height);
     const double across = y.x() * tangent2.y() - y.y() * tangent2.x();
-    const double across_over_rho = across * inverse_rho;
     const double kappa =
-        over_face ? r1 * tangent_height * tangent_height + std::max(outward, 0.0)
-                  : (r1 + std::max(outward, 0.0)) -
-                        ((r1 * r2) * inverse_rho) * (across_over_rho * across_over_rho);
-    const double four_kappa_squared = 4.0 * kappa * kappa;
-    const double denominator = four_kappa_squared + sigma * sigma;
+        over_face ? tangent_height * tangent_height + std::max(outward, 0.0)
+                  : (r1_squared + std::max(outward, 0.0)) -
+                        (across * across * inverse_r2_squared) * (to_rim * to_rim * to_rim);
+    // The Cayley turn by 2 atan(dtheta / 2) over one denominator.
+    const double half_sigma = 0.5 * sigma;
+    const double denominator = kappa * kappa + half_sigma * half_sigma;
     if (!(kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
           denominator >= std::numeric_limits<double>::min())) {
       break;
@@ -604,30 +615,30 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       // full certificate: along q - x the certificate's rounding grows like
       // scale (eps scale / d)^2 for small distances d, along t1 x t2 it does not.
       if (dtheta * r1 <= kStepAtRounding * scale ||
-          0.5 * r1 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
+          0.5 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
         lower = std::max(*lower, tangentCrossCertificate(pair, x_tried, q_tried));
         return answer(step);
       }
     }
     const double inverse = 1.0 / denominator;
-    const double cos = (four_kappa_squared - sigma * sigma) * inverse;
-    const double sin = -4.0 * sigma * kappa * inverse;
-    const Vec2 next_radial2 = cos * radial2 + sin * tangent2;
-    const double next_radial_height = cos * radial_height + sin * tangent_height;
-    const Vec2 next_y = r1 * next_radial2 + y0;
-    const double next_h = r1 * next_radial_height + h0;
+    const double cos = (kappa * kappa - half_sigma * half_sigma) * inverse;
+    const double sin = -(sigma * kappa) * inverse;
+    const Vec2 next_offset2 = cos * offset2 + sin * tangent2;
+    const double next_offset_height = cos * offset_height + sin * tangent_height;
+    // y's own sum, one addition shorter than next_offset2 + y0.
+    const Vec2 next_y = cos * offset2 + (sin * tangent2 + y0);
+    const double next_h = cos * offset_height + (sin * tangent_height + h0);
     const double next_rho_squared = next_y.squaredNorm();
     const bool next_over_face = !(next_rho_squared > r2 * r2);
-    const double next_inverse_rho =
-        next_over_face ? 0.0 : std::sqrt(next_rho_squared) * (1.0 / next_rho_squared);
-    const double next_to_rim = next_over_face ? 1.0 : r2 * next_inverse_rho;
+    const double next_to_rim =
+        next_over_face ? 1.0 : std::sqrt(next_rho_squared) * (r2 / next_rho_squared);
     const double next_k = 1.0 - next_to_rim;
     const double next_psi = 0.5 * (next_k * next_k * next_rho_squared + next_h * next_h);
     if (!(next_psi < psi) || psi - next_psi <= kStagnation * scale * scale) break;
     radial = Vec2(cos * radial.x() - sin * radial.y(), cos * radial.y() + sin * radial.x());
-    radial2 = next_radial2, radial_height = next_radial_height;
+    offset2 = next_offset2, offset_height = next_offset_height;
     y = next_y, h = next_h, over_face = next_over_face;
-    inverse_rho = next_inverse_rho, to_rim = next_to_rim, k = next_k, psi = next_psi;
+    to_rim = next_to_rim, psi = next_psi;
     step_before = last_step;
     last_step = dtheta;
     last_kappa = kappa;
