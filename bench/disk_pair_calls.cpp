@@ -1,8 +1,10 @@
 // A fixed workload for instruction counts (docs/performance.md, "Instructions"):
 // one disk-disk solver called on the first 2000 pairs of one family of
 // test/disk_families.h (seed 20240601), ten passes (or PASSES), nothing else timed or
-// printed but the sum of the distances. Run it under callgrind and divide the
-// solver's inclusive count by 20000:
+// printed but the sum of the distances (and, for the exact solver, after the
+// workload, its mean iteration count on the pairs it answers rim to rim). Run it
+// under callgrind and divide the solver's inclusive count by 2000 x passes
+// (20000 by default):
 //
 //   valgrind --tool=callgrind --callgrind-out-file=cg.out ./build/bench/disk_pair_calls random exact
 //   callgrind_annotate --inclusive=yes cg.out | grep -m1 'exactDiskDistance<double>'
@@ -46,12 +48,25 @@ int main(int argc, char** argv) {
   const bool exact = std::strcmp(argv[2], "exact") == 0;
   const auto cases = makeFamily<double>(*family, kPairs, kSeed);
   double sum = 0.0;
+  int rim_rim = 0, iterations = 0;  // the exact solver's, over the first pass
   for (int pass = 0; pass < passes; ++pass) {
     for (const auto& c : cases) {
-      sum += exact ? fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance
-                   : fcl_disk::almohamadSelimDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance;
+      if (!exact) {
+        sum += fcl_disk::almohamadSelimDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2).distance;
+        continue;
+      }
+      const auto result = fcl_disk::exactDiskDistance(c.r1, c.X_W1, c.r2, c.X_W2);
+      sum += result.distance;
+      if (pass == 0 && result.feature == fcl_disk::DiskPairFeature::rim_rim) {
+        ++rim_rim;
+        iterations += result.iterations;
+      }
     }
   }
   std::printf("%d calls, sum of distances %.17g\n", kPairs * passes, sum);
+  if (exact) {
+    std::printf("%d rim-rim answers, %.2f iterations on average\n", rim_rim,
+                rim_rim > 0 ? double(iterations) / rim_rim : 0.0);
+  }
   return 0;
 }
