@@ -508,10 +508,10 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// Plain Newton along disk 1's rim, the path nearly every rim-rim query
 /// takes to its answer, written as one short chain of arithmetic (the
 /// iteration is latency-bound): x = r1 radial is carried in disk 2's frame as
-/// the unitless radial2 = R_xy^T radial and radial_height = m2.radial, so a
-/// rotation of radial by (cos, sin) moves y and h by the same rotation of
-/// (radial2, radial_height) and (tangent2, tangent_height), with no matrix
-/// product on the chain. The steps are rimRim's (alongRim's sigma and kappa,
+/// offset2 = r1 R_xy^T radial and offset_height = r1 m2.radial, so a rotation
+/// of radial by (cos, sin) moves y and h by the same rotation of (offset2,
+/// offset_height) and (tangent2, tangent_height), the same images of r1 t, with
+/// no matrix product on the chain. The steps are rimRim's (alongRim's sigma and kappa,
 /// the Cayley rotation); the certificate is tried once the step Newton's
 /// quadratic convergence predicts from the last two, dtheta_k^3 /
 /// dtheta_(k-1)^2, would pass rimRim's `converging` test, so a query ends
