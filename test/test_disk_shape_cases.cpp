@@ -255,7 +255,27 @@ void expectCylinderCasesInClosedForm() {
   }
 }
 
+// Disks parallel to the caps, where no chord exists: in a cap's plane
+// overlapping it (0), in that plane beside it (rims 1 - 1 - 0.5 apart along
+// x: 0.5), and over it (0.25 above the cap's plane).
+template <typename S>
+void expectCylinderCapParallelCases() {
+  const fcl::Cylinder<S> cylinder(S(0.5), S(2));
+  const auto distance = [&](const Vector3d& centre) {
+    return double(fcl_disk::diskShapeDistance(S(1), at(centre).cast<S>(), cylinder,
+                                              fcl::Transform3<S>::Identity())
+                      .distance);
+  };
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
+  EXPECT_EQ(distance({0.3, 0, 1}), 0.0);
+  EXPECT_NEAR(distance({2, 0, 1}), 0.5, tolerance);
+  EXPECT_NEAR(distance({0.2, 0.1, 1.25}), 0.25, tolerance);
+  EXPECT_NEAR(distance({0.2, 0.1, -1.25}), 0.25, tolerance);
+}
+
 TEST(DiskShapeCases, CylinderWallCapRimAndCommonPointInClosedForm) {
+  expectCylinderCapParallelCases<double>();
+  expectCylinderCapParallelCases<float>();
   expectCylinderCasesInClosedForm<double>();
   expectCylinderCasesInClosedForm<float>();
 }
