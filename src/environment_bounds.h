@@ -190,13 +190,16 @@ inline LeafToDisk exactLeafOf(const DiskShapeSolution& solution) {
 
 /// Raises `lower` to the certificate along the direction of a pair of points
 /// `distance` apart, w = (p_leaf - p_disk) / distance: least_along(w) - h_K(w),
-/// `least_along(w)` the least w.y over the leaf.
+/// `least_along(w)` the least w.y over the leaf. Both are positively
+/// homogeneous, so they are taken along p_leaf - p_disk and divided by
+/// `distance` once: the support's square root then runs beside the one that
+/// gave `distance`, not after a division by it.
 template <typename LeastAlong>
 void certifyAlongPair(const DiskInShape& disk, LeastAlong&& least_along, double distance,
                       const Vec3& p_disk, const Vec3& p_leaf, double* lower) {
   if (!(distance > 0.0)) return;
-  const Vec3 w = (p_leaf - p_disk) / distance;
-  *lower = std::max(*lower, least_along(w) - disk.support(w));
+  const Vec3 separation = p_leaf - p_disk;
+  *lower = std::max(*lower, (least_along(separation) - disk.support(separation)) / distance);
 }
 
 /// The leaf's edges as candidates for the nearest pair (the rim or the face

@@ -460,18 +460,15 @@ Vec2 stepOnDisk(const Eigen::Matrix2d& H, const Vec2& g, const Vec2& s, double r
 
 /// The direction of v, or (1, 0) for v = 0. It starts the rim iteration's
 /// chain, so 1 / |v| is sqrt(|v|^2) * (1 / |v|^2), a square root and a division
-/// side by side, where |v|^2 is normal; otherwise (|v|^2 subnormal or beyond
-/// double's range) v is first divided by its larger component.
+/// side by side, where |v|^2 is normal; otherwise (|v| subnormal, where 1 / |v|
+/// overflows, or beyond 1e154) v is divided per component by |v|.
 Vec2 directionOf(const Vec2& v) {
   const double length_squared = v.squaredNorm();
   if (std::isnormal(length_squared)) {
     return std::sqrt(length_squared) * (1.0 / length_squared) * v;
   }
-  const double largest = std::max(std::abs(v.x()), std::abs(v.y()));
-  if (!(largest > 0.0)) return Vec2(1.0, 0.0);
-  const Vec2 scaled(v.x() / largest, v.y() / largest);  // |scaled| in [1, sqrt 2]
-  const double length = scaled.norm();
-  return Vec2(scaled.x() / length, scaled.y() / length);
+  const double length = v.norm();
+  return length > 0.0 ? Vec2(v.x() / length, v.y() / length) : Vec2(1.0, 0.0);
 }
 
 /// s times the projection onto plane 1 of disk 2's rim point extreme towards
