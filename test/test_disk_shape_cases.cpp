@@ -256,7 +256,7 @@ void expectCylinderCasesInClosedForm() {
 }
 
 // Disks parallel to the caps, where no chord exists: in a cap's plane
-// overlapping it (0), in that plane beside it (rims 1 - 1 - 0.5 apart along
+// overlapping it (0), in that plane beside it (rims 2 - 1 - 0.5 apart along
 // x: 0.5), and over it (0.25 above the cap's plane).
 template <typename S>
 void expectCylinderCapParallelCases() {
