@@ -506,9 +506,9 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// takes to its answer, written as one short chain of arithmetic (the
 /// iteration is latency-bound): x = r1 radial is carried in disk 2's frame as
 /// offset2 = r1 R_xy^T radial and offset_height = r1 m2.radial, so a rotation
-/// of radial by (cos, sin) moves y and h by the same rotation of (offset2,
-/// offset_height) and (tangent2, tangent_height), the same images of r1 t, with
-/// no matrix product on the chain. The steps are rimRim's (alongRim's sigma and kappa,
+/// of radial by (cos, sin) moves y and h by (cos offset2 + r1 sin tangent2,
+/// ...), tangent2 = R_xy^T t and tangent_height = m2.t the images of t =
+/// perp(radial), with no matrix product on the chain. The steps are rimRim's (alongRim's sigma and kappa,
 /// the Cayley rotation); the certificate is tried once the step Newton's
 /// quadratic convergence predicts from the last two, dtheta_k^3 /
 /// dtheta_(k-1)^2, would pass rimRim's `converging` test, so a query ends
@@ -528,16 +528,15 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
                                   Vec2* radial_io, int* steps) {
   const Mat3& R = pair.R;
   const double r1 = pair.r1, r2 = pair.r2;
-  const double r1_squared = r1 * r1, inverse_r2_squared = 1.0 / (r2 * r2);
+  const double inverse_r1 = 1.0 / r1, inverse_r2 = 1.0 / r2;
   const Vec2 y0 = pair.c1_in_frame2.head<2>();
   const double h0 = pair.c1_in_frame2.z();
   const double gap_tolerance = kGapTolerance * scale;
   const double certify_below = kCertifyStep * scale;
   // The point x = r1 radial in disk 2's frame, y = offset2 + y0 and h =
   // offset_height + h0, with (offset2, offset_height) = r1 (R_xy^T radial,
-  // m2.radial), and the same images of r1 t, t = perp(radial). Every length
-  // below is r1 times the document's sigma, kappa and outward (the Cayley
-  // turn and the step dtheta = sigma / kappa are ratios of them).
+  // m2.radial); the unit images of t = perp(radial) are taken from radial at
+  // each step, off the chain.
   Vec2 radial = *radial_io;
   Vec2 offset2(r1 * (R(0, 0) * radial.x() + R(1, 0) * radial.y()),
                r1 * (R(0, 1) * radial.x() + R(1, 1) * radial.y()));
@@ -552,11 +551,10 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   double to_rim = over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
   double psi = 0.5 * ((1.0 - to_rim) * (1.0 - to_rim) * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
-  // rimRim's `converging` test for a step dtheta with curvature kappa (r1 times
-  // the document's).
+  // rimRim's `converging` test for a step dtheta with curvature kappa.
   const auto converging = [&](double dtheta, double kappa, double distance) {
     return dtheta * r1 <= certify_below &&
-           0.5 * kappa * dtheta * dtheta <= distance * gap_tolerance;
+           0.5 * r1 * kappa * dtheta * dtheta <= distance * gap_tolerance;
   };
   // The certificate at the current point, once tried, and the distance |q - x|
   // it is compared with (the points themselves, not psi: for a rotation that
@@ -586,24 +584,27 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
         if (certified()) return answer(step);
       }
     }
-    // alongRim over disk 2's rim, with the tangent's images, arranged so that
+    // alongRim over disk 2's rim, with the unit images of t, arranged so that
     // to_rim enters each of sigma, outward and kappa once, last: with k = 1 -
     // to_rim, sigma = k y.t2 + h t_h = (y.t2 + h t_h) - to_rim y.t2, and
-    // (r2 / rho) (y x t2 / rho)^2 = to_rim^3 (y x t2)^2 / r2^2.
-    const Vec2 tangent2(r1 * (R(1, 0) * radial.x() - R(0, 0) * radial.y()),
-                        r1 * (R(1, 1) * radial.x() - R(0, 1) * radial.y()));
-    const double tangent_height = r1 * (R(1, 2) * radial.x() - R(0, 2) * radial.y());
-    const double y_along = y.dot(tangent2), y_out = y.dot(offset2);
+    // r1 (r2 / rho) (y x t2 / rho)^2 = r1 to_rim (to_rim (y x t2) / r2)^2,
+    // whose factors stay of the size of lengths.
+    const Vec2 tangent2(R(1, 0) * radial.x() - R(0, 0) * radial.y(),
+                        R(1, 1) * radial.x() - R(0, 1) * radial.y());
+    const double tangent_height = R(1, 2) * radial.x() - R(0, 2) * radial.y();
+    const double y_along = y.dot(tangent2), y_out = y.dot(offset2) * inverse_r1;
+    const double h_out = h * offset_height * inverse_r1;
     const double sigma = over_face ? h * tangent_height
                                    : (y_along + h * tangent_height) - to_rim * y_along;
-    const double outward =
-        over_face ? -h * offset_height : to_rim * y_out - (y_out + h * offset_height);
-    const double across = y.x() * tangent2.y() - y.y() * tangent2.x();
+    const double outward = over_face ? -h_out : to_rim * y_out - (y_out + h_out);
+    const double across_over_r2 = (y.x() * tangent2.y() - y.y() * tangent2.x()) * inverse_r2;
+    const double across_over_rho = to_rim * across_over_r2;
     const double kappa =
-        over_face ? tangent_height * tangent_height + std::max(outward, 0.0)
-                  : (r1_squared + std::max(outward, 0.0)) -
-                        (across * across * inverse_r2_squared) * (to_rim * to_rim * to_rim);
-    // The Cayley turn by 2 atan(dtheta / 2) over one denominator.
+        over_face ? r1 * tangent_height * tangent_height + std::max(outward, 0.0)
+                  : (r1 + std::max(outward, 0.0)) -
+                        (r1 * to_rim) * (across_over_rho * across_over_rho);
+    // The Cayley turn by 2 atan(dtheta / 2) over one denominator; r1 sin, the
+    // turn's step in lengths, is taken beside the division.
     const double half_sigma = 0.5 * sigma;
     const double denominator = kappa * kappa + half_sigma * half_sigma;
     if (!(kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
@@ -621,7 +622,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       // full certificate: along q - x the certificate's rounding grows like
       // scale (eps scale / d)^2 for small distances d, along t1 x t2 it does not.
       if (dtheta * r1 <= kStepAtRounding * scale ||
-          0.5 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
+          0.5 * r1 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
         lower = std::max(*lower, tangentCrossCertificate(pair, x_tried, q_tried));
         return answer(step);
       }
@@ -629,11 +630,12 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     const double inverse = 1.0 / denominator;
     const double cos = (kappa * kappa - half_sigma * half_sigma) * inverse;
     const double sin = -(sigma * kappa) * inverse;
-    const Vec2 next_offset2 = cos * offset2 + sin * tangent2;
-    const double next_offset_height = cos * offset_height + sin * tangent_height;
+    const double r1_sin = -(r1 * sigma * kappa) * inverse;
+    const Vec2 next_offset2 = cos * offset2 + r1_sin * tangent2;
+    const double next_offset_height = cos * offset_height + r1_sin * tangent_height;
     // y's own sum, one addition shorter than next_offset2 + y0.
-    const Vec2 next_y = cos * offset2 + (sin * tangent2 + y0);
-    const double next_h = cos * offset_height + (sin * tangent_height + h0);
+    const Vec2 next_y = cos * offset2 + (r1_sin * tangent2 + y0);
+    const double next_h = cos * offset_height + (r1_sin * tangent_height + h0);
     const double next_rho_squared = next_y.squaredNorm();
     const bool next_over_face = !(next_rho_squared > r2 * r2);
     const double next_to_rim =
