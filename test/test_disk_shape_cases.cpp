@@ -280,6 +280,69 @@ TEST(DiskShapeCases, CylinderWallCapRimAndCommonPointInClosedForm) {
   expectCylinderCasesInClosedForm<float>();
 }
 
+// The Convex's closed form (ConvexTraits::closedForm: the hull's feature
+// nearest the disk's point nearest the hull's point nearest its centre), one
+// pose derived by hand per feature, in float and double: the unit cube (full
+// side 2) as a Convex of six quadrilaterals, and the tetrahedron 0, e_x, e_y,
+// e_z of four triangles. The disk has radius 1.
+template <typename S>
+void expectConvexCasesInClosedForm() {
+  const fcl::Convex<S> cube = boxAsConvex<S>(2, 2, 2);
+  // A face: the disk tilted by 30 degrees about x over the top face (z = 1),
+  // centre (0, 0, 2), normal (0, sin 30, cos 30). Its lowest point, centre -
+  // (0, -cos 30, sin 30) = (0, cos 30, 1.5), lies over the face: 0.5.
+  const double sin30 = 0.5, cos30 = std::sqrt(3.0) / 2;
+  expectClosedForm<S>(at({0, 0, 2}, {0, sin30, cos30}), cube, kIdentity, 0.5,
+                      Vector3d(0, cos30, 1.5), Vector3d(0, cos30, 1));
+  // A vertex: the disk normal to the diagonal through the corner (1, 1, 1),
+  // centred 2 beyond it; the cube lies behind the plane through the corner
+  // normal to the diagonal, every disk point 2 in front of it: 2, from the
+  // centre to the corner.
+  const Vector3d diagonal = Vector3d(1, 1, 1).normalized();
+  expectClosedForm<S>(at(Vector3d(1, 1, 1) + 2 * diagonal, diagonal), cube, kIdentity, 2,
+                      Vector3d(1, 1, 1) + 2 * diagonal, Vector3d(1, 1, 1));
+  // An edge: the disk in the plane x = 0.3, centre (0.3, 2.5, 2.5). In that
+  // plane the cube is the square |y|, |z| <= 1 (and the cube's point nearest
+  // any point of the plane lies in it): the square's corner (1, 1), on the
+  // edge y = z = 1, at 1.5 sqrt(2) from the centre, minus the radius.
+  const Vector3d edge_centre(0.3, 2.5, 2.5);
+  expectClosedForm<S>(at(edge_centre, Vector3d::UnitX()), cube, kIdentity,
+                      1.5 * std::sqrt(2.0) - 1, edge_centre - Vector3d(0, 1, 1).normalized(),
+                      Vector3d(0.3, 1, 1));
+  // The tetrahedron's vertex 0: the disk normal to (1, 1, 1) centred 2 behind
+  // it; the tetrahedron lies in x + y + z >= 0.
+  auto corners = std::make_shared<std::vector<fcl::Vector3<S>>>(std::vector<fcl::Vector3<S>>{
+      {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}});
+  auto triangles = std::make_shared<std::vector<int>>(
+      std::vector<int>{3, 0, 2, 1, 3, 0, 1, 3, 3, 0, 3, 2, 3, 1, 2, 3});
+  const fcl::Convex<S> tetrahedron(corners, 4, triangles);
+  expectClosedForm<S>(at(-2 * diagonal, diagonal), tetrahedron, kIdentity, 2, -2 * diagonal,
+                      Vector3d::Zero());
+  // Meetings: the disk centred inside the cube; a vertical disk (normal +y)
+  // centred at (0, 0, 1.5), whose chord in the top face's plane, x in
+  // [-sqrt(0.75), sqrt(0.75)], lies inside the face; a disk in the plane x =
+  // 0.3 through the edge y = z = 1 (centre (0.3, 1.5, 1.5), 0.71 from it).
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
+  for (const Transform3d& X_WD : {at({0.2, -0.1, 0.3}, {1, 2, 3}), at({0, 0, 1.5}, Vector3d::UnitY()),
+                                  at({0.3, 1.5, 1.5}, Vector3d::UnitX())}) {
+    const auto meeting = fcl_disk::diskShapeDistance(S(1), X_WD.cast<S>(), cube,
+                                                     fcl::Transform3<S>::Identity());
+    EXPECT_EQ(meeting.distance, S(0));
+    EXPECT_EQ(meeting.iterations, 0);
+    const Vector3d x = meeting.p_W_disk.template cast<double>();
+    EXPECT_NEAR((meeting.p_W_shape.template cast<double>() - x).norm(), 0.0, tolerance);
+    EXPECT_LE(x.cwiseAbs().maxCoeff(), 1 + tolerance);  // on the cube
+    const Vector3d in_disk = X_WD.inverse() * x;        // on the disk
+    EXPECT_NEAR(in_disk.z(), 0.0, tolerance);
+    EXPECT_LE(in_disk.head<2>().norm(), 1 + tolerance);
+  }
+}
+
+TEST(DiskShapeCases, ConvexVertexEdgeFaceAndCommonPointInClosedForm) {
+  expectConvexCasesInClosedForm<double>();
+  expectConvexCasesInClosedForm<float>();
+}
+
 // A needle: an ellipsoid with one semi-axis of 0.1 and two far below any
 // scene length (1e-8 .. 1e-140), crossing or passing a disk in random tilts.
 // Its projection's root t is then far below e_max^2: the secular iteration

@@ -256,11 +256,95 @@ struct ConvexTarget {
                               face.unit_normal);
   }
 
-  /// Only faces whose planes have y strictly outside can hold the nearest point,
-  /// and a face's plane distance bounds its polygon's distance from below: the
-  /// face whose plane is farthest first (usually the answer: y's foot on it lies
-  /// inside it), then the others whose plane distance can still beat the best.
-  Projection project(const Vec3& y) const {
+  /// Where on a face its nearest point to y lies: inside it (`face`), on the
+  /// edge from its vertex `index` to the next (`edge`), or at its vertex
+  /// `index` (`vertex`); positions in the face's own list.
+  enum class Feature { face, edge, vertex };
+  struct NearestOnFace {
+    Vec3 q;
+    Feature feature;
+    int index;
+  };
+
+  Vec3 faceVertex(const ConvexFace& face, int i) const { return vertex(list[face.start + i]); }
+
+  /// The nearest point of the face's polygon to y, and its feature: the foot on
+  /// the plane when it lies inside every edge, else the nearest point of the
+  /// nearest edge (an end of it: a vertex).
+  NearestOnFace nearestOnFace(const Vec3& y, const ConvexFace& face) const {
+    const Vec3& m = face.unit_normal;
+    if (m.squaredNorm() > 0.0) {
+      bool inside = true;
+      for (int i = 0; i < face.count && inside; ++i) {
+        const Vec3 from = faceVertex(face, i), to = faceVertex(face, (i + 1) % face.count);
+        inside = m.dot((to - from).cross(y - from)) >= 0.0;
+      }
+      if (inside) return {y - m.dot(y - faceVertex(face, 0)) * m, Feature::face, 0};
+    }
+    NearestOnFace best{faceVertex(face, 0), Feature::vertex, 0};
+    double best_squared = (y - best.q).squaredNorm();
+    for (int i = 0; i < face.count; ++i) {
+      const int next = (i + 1) % face.count;
+      const Vec3 from = faceVertex(face, i), edge = faceVertex(face, next) - from;
+      const double length_squared = edge.squaredNorm();
+      const double t = length_squared > 0.0 ? edge.dot(y - from) / length_squared : 0.0;
+      const NearestOnFace on_edge = t <= 0.0   ? NearestOnFace{from, Feature::vertex, i}
+                                    : t >= 1.0 ? NearestOnFace{from + edge, Feature::vertex, next}
+                                               : NearestOnFace{from + t * edge, Feature::edge, i};
+      const double squared = (y - on_edge.q).squaredNorm();
+      if (squared < best_squared) best = on_edge, best_squared = squared;
+    }
+    return best;
+  }
+
+  /// A common point of the disk and the face, in the disk's in-plane
+  /// coordinates, given a disk point m on the face's plane: the disk meets
+  /// that plane along the chord through m whose in-plane direction is normal
+  /// to the face normal's in-plane part; the middle of the chord's stretch
+  /// inside every edge (the polygon is convex, counter-clockwise seen from
+  /// outside), if that stretch is not empty. None when it is, or when the
+  /// disk is parallel to the plane (no chord).
+  std::optional<Vec2> chordWithinRim(const DiskInShape& disk, const ConvexFace& face,
+                                     const Vec3& m) const {
+    const Vec2 s_m = disk.inPlane(m - disk.c);
+    const Vec2 normal_in_disk = disk.inPlane(face.unit_normal);
+    const Vec2 along(-normal_in_disk.y(), normal_in_disk.x());
+    // s_m + tau along within the rim: tau between the roots of
+    // |s_m + tau along|^2 = r^2 (m lies within the rim, but for rounding).
+    const double a = along.squaredNorm(), b = s_m.dot(along), c = s_m.squaredNorm() - disk.r * disk.r;
+    if (!(a > 0.0)) return std::nullopt;
+    const double root = std::sqrt(std::max(b * b - a * c, 0.0));
+    double low = (-b - root) / a, high = (-b + root) / a;
+    const Vec3 direction = along.x() * disk.u + along.y() * disk.v;  // the chord's, in 3-D
+    for (int i = 0; i < face.count; ++i) {  // clip to each edge's inner side
+      const Vec3 from = faceVertex(face, i);
+      const Vec3 inwards = face.unit_normal.cross(faceVertex(face, (i + 1) % face.count) - from);
+      const double start = inwards.dot(m - from), rate = inwards.dot(direction);
+      if (rate == 0.0) {
+        if (!(start >= 0.0)) return std::nullopt;
+        continue;
+      }
+      const double bound = -start / rate;
+      if (rate > 0.0) {
+        low = std::max(low, bound);
+      } else {
+        high = std::min(high, bound);
+      }
+    }
+    if (!(low <= high)) return std::nullopt;
+    return Vec2(s_m + (0.5 * (low + high)) * along);
+  }
+
+  /// The polytope's nearest point to y as `onto_face` gives it on the face
+  /// holding it (any type with a point q), and that face; nullopt when y lies
+  /// inside every face plane. Only faces whose planes have y strictly outside
+  /// can hold the nearest point, and a face's plane distance bounds its
+  /// polygon's distance from below: the face whose plane is farthest first
+  /// (usually the answer: y's foot on it lies inside it), then the others
+  /// whose plane distance can still beat the best.
+  template <typename OntoFace>
+  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face) const
+      -> std::optional<std::pair<decltype(onto_face(faces[0])), int>> {
     // Every plane's height of y, in one vectorised pass over the plane columns.
     thread_local Eigen::VectorXd heights;
     const std::size_t face_count = faces.size();
@@ -269,44 +353,59 @@ struct ConvexTarget {
     const double* height_of = heights.data();
     Eigen::Index farthest_index = 0;
     const double farthest_height = heights.maxCoeff(&farthest_index);
-    const int farthest = farthest_height > 0.0 ? int(farthest_index) : -1;
-    if (farthest < 0) {
-      // Inside every face plane: inside the solid, or on a flat polytope's plane,
-      // where its largest face (the polygon) decides; when every face has zero
-      // area (a polytope collapsed to a segment or a point) the nearest of the
-      // faces' edges does.
-      if (!flat || largest_face < 0) return Projection{y, FactoredHessian()};
-      if (faces[largest_face].unit_normal.squaredNorm() > 0.0) {
-        return ontoFace(y, faces[largest_face]);
-      }
-      Projection best = ontoFace(y, faces[0]);
-      for (std::size_t f = 1; f < faces.size(); ++f) {
-        const Projection on_face = ontoFace(y, faces[f]);
-        if ((y - on_face.q).squaredNorm() < (y - best.q).squaredNorm()) best = on_face;
-      }
-      return best;
-    }
-    Projection best = ontoFace(y, faces[farthest]);
+    if (!(farthest_height > 0.0)) return std::nullopt;
+    const int farthest = int(farthest_index);
+    auto best = onto_face(faces[farthest]);
+    int best_face = farthest;
     double best_distance = (y - best.q).norm();
     // The farthest plane's distance bounds the polytope's: reached, it is optimal.
-    if (best_distance <= farthest_height) return best;
+    if (best_distance <= farthest_height) return std::pair(best, best_face);
     // q is the polytope's point nearest y iff no vertex lies beyond q along
     // y - q (the optimality condition (y - q).(v - q) <= 0 for every point v of
     // the hull, checked at its vertices): mostly q is on the farthest face's
     // boundary and this one support scan settles it.
     const Vec3 away = y - best.q;
-    if (supportValue(away) <= away.dot(best.q)) return best;
+    if (supportValue(away) <= away.dot(best.q)) return std::pair(best, best_face);
     for (std::size_t f = 0; f < face_count; ++f) {
       if (int(f) == farthest) continue;
       const double height = height_of[f];
       if (!(height > 0.0) || !(height < best_distance)) continue;
       const double reach = best_distance + faces[f].radius;
       if (!((y - faces[f].centre).squaredNorm() < reach * reach)) continue;
-      const Projection on_face = ontoFace(y, faces[f]);
+      const auto on_face = onto_face(faces[f]);
       const double distance = (y - on_face.q).norm();
-      if (distance < best_distance) best = on_face, best_distance = distance;
+      if (distance < best_distance) best = on_face, best_distance = distance, best_face = int(f);
+    }
+    return std::pair(best, best_face);
+  }
+
+  /// The polytope's nearest point to y, with psi's Hessian (nearestOverFaces
+  /// with the faces' projections). y inside every face plane is inside the
+  /// solid (its own nearest point), unless the polytope is flat: then its
+  /// largest face (the polygon) decides, or, when every face has zero area (a
+  /// polytope collapsed to a segment or a point), the nearest of the faces'
+  /// edges.
+  Projection project(const Vec3& y) const {
+    if (const auto nearest =
+            nearestOverFaces(y, [&](const ConvexFace& face) { return ontoFace(y, face); })) {
+      return nearest->first;
+    }
+    if (!flat || largest_face < 0) return Projection{y, FactoredHessian()};
+    if (faces[largest_face].unit_normal.squaredNorm() > 0.0) {
+      return ontoFace(y, faces[largest_face]);
+    }
+    Projection best = ontoFace(y, faces[0]);
+    for (std::size_t f = 1; f < faces.size(); ++f) {
+      const Projection on_face = ontoFace(y, faces[f]);
+      if ((y - on_face.q).squaredNorm() < (y - best.q).squaredNorm()) best = on_face;
     }
     return best;
+  }
+
+  /// The polytope's nearest feature to y (nearestOverFaces with
+  /// nearestOnFace), nullopt when y lies inside every face plane.
+  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y) const {
+    return nearestOverFaces(y, [&](const ConvexFace& face) { return nearestOnFace(y, face); });
   }
 
   /// w.v for every vertex v, in one vectorised pass (this thread's buffer,
@@ -355,6 +454,90 @@ struct ConvexTraits {
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
   static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
     return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
+  }
+  /// The polytope by its nearest feature, as the box's closed form
+  /// (alignedBoxToDiskByNearestFeature; docs/disk_shape_distance.md, section
+  /// 4): q = the hull's point nearest the disk's centre, p = the disk point
+  /// nearest q, and the hull's feature nearest p (nearestFeature), solved in
+  /// closed form:
+  ///  * none, p inside every face plane: p is a common point (the centre, when
+  ///    it lies inside them);
+  ///  * a vertex: it and its nearest disk point;
+  ///  * an edge: segmentToDisk; where the disk meets the edge, its crossing of
+  ///    the disk's plane within the rim is a common point
+  ///    (segmentCrossingWithinRim);
+  ///  * a face: the disk's point deepest towards it with its foot, if the foot
+  ///    lies inside the face (the face's plane then separates the sets); if it
+  ///    lies beyond the polygon, that point's feature instead, once; if it
+  ///    reaches the face's plane, the disk's chord in that plane meets the
+  ///    face at a common point (chordWithinRim), or not settled.
+  /// A pair is exact when the certificate along it, with the vertices' least
+  /// value, closes within kShapeGapTolerance of the scene (certifiedOrBound):
+  /// the hull's nearest feature to the disk's nearest point is the optimal
+  /// feature. Not exact (a certificate left open, a chord beside the face)
+  /// means only "not settled here": the generic solver answers. A flat
+  /// polytope, whose plane tests cannot tell its inside, is left to it.
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Convex<S>& convex,
+                               double scale) {
+    using Feature = typename ConvexTarget<S>::Feature;
+    const ConvexTarget<S> hull = target(convex);
+    const LeafToDisk not_settled;
+    if (hull.flat) return not_settled;
+    const auto least_along = [&](const Vec3& w) { return hull.alongVertices(w).minCoeff(); };
+    const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_hull) {
+      // The certificate alone must close: an overlap has it negative, so a
+      // pair that only nearly touches is not taken for the distance.
+      double lower = -std::numeric_limits<double>::infinity();
+      certifyAlongPair(disk, least_along, upper, p_disk, p_hull, &lower);
+      return certifiedOrBound(lower, upper, p_disk, p_hull, scale);
+    };
+    const auto at_centre = hull.nearestFeature(disk.c);
+    if (!at_centre) return meetingAt(disk, Vec2::Zero());
+    Vec3 p = disk.point(disk.nearest(at_centre->first.q));
+    for (int pass = 0; pass < 2; ++pass) {
+      const auto at = hull.nearestFeature(p);
+      if (!at) {
+        LeafToDisk answer;
+        answer.exact = true;
+        answer.p_disk = answer.p_leaf = p;
+        return answer;
+      }
+      const auto& [nearest, face_index] = *at;
+      const ConvexFace& face = hull.faces[face_index];
+      if (nearest.feature == Feature::vertex) {
+        const Vec3 p_disk = disk.point(disk.nearest(nearest.q));
+        return certified((nearest.q - p_disk).norm(), p_disk, nearest.q);
+      }
+      if (nearest.feature == Feature::edge) {
+        const Vec3 from = hull.faceVertex(face, nearest.index);
+        const Vec3 to = hull.faceVertex(face, (nearest.index + 1) % face.count);
+        const SegmentToDisk edge = segmentToDisk(disk, from, to);
+        if (LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
+            by_edge.exact) {
+          return by_edge;
+        }
+        if (const auto common = segmentCrossingWithinRim(disk, from, to)) {
+          return meetingAt(disk, *common);
+        }
+        return not_settled;
+      }
+      const Vec3 deepest = disk.lowestAlong(face.unit_normal);
+      const auto below = hull.nearestOnFace(deepest, face);
+      const double deepest_height = face.unit_normal.dot(deepest - below.q);
+      if (!(deepest_height > 0.0)) {
+        // p lies beyond the face's plane, the deepest point on or inside it:
+        // the segment between them crosses the plane at m.
+        const double p_height = face.unit_normal.dot(p) - face.offset;
+        const Vec3 m = p + (p_height / (p_height - deepest_height)) * (deepest - p);
+        if (const auto common = hull.chordWithinRim(disk, face, m)) return meetingAt(disk, *common);
+        return not_settled;
+      }
+      if (below.feature == Feature::face) {
+        return certified((deepest - below.q).norm(), deepest, below.q);
+      }
+      p = deepest;
+    }
+    return not_settled;
   }
   /// The directions among which the shortest separating translation lies
   /// (shortestSeparation adds the disk's normals and both signs), so the contact's
