@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -22,6 +23,18 @@ namespace {
 /// (a few eps), far below any real dihedral angle.
 constexpr double kParallelFaceSine = 1e-12;
 
+/// The rounding of w.v for a vertex v of a hull of bounding radius B, relative
+/// to |w|_1 B: a few eps (three products and two sums). The projection's
+/// optimality test compares w.v with w.q where q lies on an edge or at a
+/// vertex, whose ends tie with q exactly: without this slack rounding fails
+/// the test about half the time and sends the projection through every face.
+/// Accepting q within it moves the distance by its square, far below eps.
+constexpr double kDotRounding = 4 * std::numeric_limits<double>::epsilon();
+
+/// The closed form's passes (ConvexTraits::closedForm): each moves to the
+/// hull's feature nearest the disk point of the last feature's pair.
+constexpr int kFeaturePasses = 3;
+
 /// A face of the polytope: where its vertex indices start in FCL's face list,
 /// how many, its outward unit normal (zero for a face of zero area), the
 /// plane's offset (normal . vertex), and a ball holding the polygon (centre the
@@ -29,10 +42,25 @@ constexpr double kParallelFaceSine = 1e-12;
 struct ConvexFace {
   std::size_t start;  ///< the face's first vertex index in FCL's face list
   int count;
+  std::size_t first_edge;  ///< its edges are ConvexGeometry::edges[first_edge, + count)
   Vec3 unit_normal;
   double offset;
   Vec3 centre;
   double radius;
+};
+
+/// A face's edge from its vertex i to the next, with what the nearest-feature
+/// projection (ConvexTarget::nearestOnFace) reads of it: the edge vector and
+/// 1 / its squared length (0 for a zero-length edge), and its normal in the
+/// face's plane pointing into the face, unit normal x edge, with its offset:
+/// a point's foot lies on the edge's inner side iff inwards . y >=
+/// inwards_offset.
+struct ConvexEdge {
+  Vec3 from, to;
+  Vec3 along;
+  double inverse_length_squared;
+  Vec3 inwards;
+  double inwards_offset;
 };
 
 /// What a query needs of a Convex beyond FCL's lists, computed from them: the
@@ -41,6 +69,7 @@ struct ConvexFace {
 struct ConvexGeometry {
   bool valid = false;  ///< ConvexTraits::valid's verdict on the lists
   std::vector<ConvexFace> faces;
+  std::vector<ConvexEdge> edges;  ///< each face's, in its order
   /// Per face: its triangle projection when it is a triangle (most hulls).
   std::vector<TriangleProjection> triangles;
   /// The face planes again, one column per coordinate (n_x, n_y, n_z, offset),
@@ -52,6 +81,10 @@ struct ConvexGeometry {
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
+  /// Scratch for the height and support scans (one entry per face, per
+  /// vertex): the geometry is this thread's own (ConvexGeometryCache), so its
+  /// buffers need no thread_local lookup per scan.
+  mutable Eigen::VectorXd heights, along;
   /// The largest spread of a face's vertices along its normal: 0 for planar
   /// faces up to rounding; ~1e-7 of the size for quadrilaterals whose
   /// vertices were rounded to float, or data planar only to its precision.
@@ -84,6 +117,7 @@ struct ConvexTarget {
   const std::vector<TriangleProjection>& triangles;
   const Eigen::Matrix<double, Eigen::Dynamic, 4>& planes;
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& points;
+  const ConvexGeometry& geometry;
   int largest_face;
   bool flat;
   double face_thickness;
@@ -95,6 +129,7 @@ struct ConvexTarget {
         triangles(geometry.triangles),
         planes(geometry.planes),
         points(geometry.points),
+        geometry(geometry),
         largest_face(geometry.largest_face),
         flat(geometry.flat),
         face_thickness(geometry.face_thickness) {}
@@ -104,6 +139,16 @@ struct ConvexTarget {
     return cache;
   }
 
+  /// Whether two lists hold the same values bit for bit (one memcmp: a
+  /// vertex is three packed scalars). Stricter than ==, never looser: -0 and
+  /// +0 differ (the geometry is then recomputed), and so do NaNs of other bits.
+  template <typename T>
+  static bool sameBytes(const std::vector<T>& a, const std::vector<T>& b) {
+    static_assert(sizeof(fcl::Vector3<S>) == 3 * sizeof(S), "a vertex has no padding bytes");
+    return a.size() == b.size() &&
+           (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+  }
+
   /// This thread's geometry of `shape`, from the cache when its lists are
   /// unchanged (compared value for value); `shape` is then the cache's
   /// verified hull.
@@ -111,8 +156,8 @@ struct ConvexTarget {
     ConvexGeometryCache<S>& cached = cache();
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
-    if (!(cached.face_count == shape.getFaceCount() && cached.vertices == vertices &&
-          cached.face_list == face_list)) {
+    if (!(cached.face_count == shape.getFaceCount() && sameBytes(cached.vertices, vertices) &&
+          sameBytes(cached.face_list, face_list))) {
       cached.face_count = -1;  // invalid while rebuilt
       cached.verified = nullptr;
       cached.vertices = vertices;
@@ -195,7 +240,16 @@ struct ConvexTarget {
         lowest = std::min(lowest, height), highest = std::max(highest, height);
       }
       geometry.face_thickness = std::max(geometry.face_thickness, highest - lowest);
-      faces.push_back(ConvexFace{at + 1, count, unit, unit.dot(vertex(index[0])), centre, radius});
+      faces.push_back(ConvexFace{at + 1, count, geometry.edges.size(), unit,
+                                 unit.dot(vertex(index[0])), centre, radius});
+      for (int i = 0; i < count; ++i) {
+        const Vec3 from = vertex(index[i]), along = vertex(index[(i + 1) % count]) - from;
+        const double length_squared = along.squaredNorm();
+        const Vec3 inwards = unit.cross(along);
+        geometry.edges.push_back(ConvexEdge{from, vertex(index[(i + 1) % count]), along,
+                                            length_squared > 0.0 ? 1.0 / length_squared : 0.0,
+                                            inwards, inwards.dot(from)});
+      }
       geometry.planes.row(f) << unit.transpose(), faces.back().offset;
       at += count + 1;
     }
@@ -266,31 +320,32 @@ struct ConvexTarget {
     int index;
   };
 
-  Vec3 faceVertex(const ConvexFace& face, int i) const { return vertex(list[face.start + i]); }
-
   /// The nearest point of the face's polygon to y, and its feature: the foot on
   /// the plane when it lies inside every edge, else the nearest point of the
-  /// nearest edge (an end of it: a vertex).
+  /// nearest edge among those y lies beyond (an end of it: a vertex). Only
+  /// those can hold it: at the nearest point of a convex polygon, y minus
+  /// that point is an outward normal of the polygon. A face of zero area is
+  /// its edges.
   NearestOnFace nearestOnFace(const Vec3& y, const ConvexFace& face) const {
-    const Vec3& m = face.unit_normal;
-    if (m.squaredNorm() > 0.0) {
-      bool inside = true;
-      for (int i = 0; i < face.count && inside; ++i) {
-        const Vec3 from = faceVertex(face, i), to = faceVertex(face, (i + 1) % face.count);
-        inside = m.dot((to - from).cross(y - from)) >= 0.0;
-      }
-      if (inside) return {y - m.dot(y - faceVertex(face, 0)) * m, Feature::face, 0};
+    const ConvexEdge* edge = &geometry.edges[face.first_edge];
+    const bool has_area = face.unit_normal.squaredNorm() > 0.0;
+    bool inside = has_area;
+    for (int i = 0; i < face.count && inside; ++i) {
+      inside = edge[i].inwards.dot(y) >= edge[i].inwards_offset;
     }
-    NearestOnFace best{faceVertex(face, 0), Feature::vertex, 0};
-    double best_squared = (y - best.q).squaredNorm();
+    if (inside) {
+      return {y - (face.unit_normal.dot(y) - face.offset) * face.unit_normal, Feature::face, 0};
+    }
+    NearestOnFace best{edge[0].from, Feature::vertex, 0};
+    double best_squared = std::numeric_limits<double>::infinity();
     for (int i = 0; i < face.count; ++i) {
-      const int next = (i + 1) % face.count;
-      const Vec3 from = faceVertex(face, i), edge = faceVertex(face, next) - from;
-      const double length_squared = edge.squaredNorm();
-      const double t = length_squared > 0.0 ? edge.dot(y - from) / length_squared : 0.0;
-      const NearestOnFace on_edge = t <= 0.0   ? NearestOnFace{from, Feature::vertex, i}
-                                    : t >= 1.0 ? NearestOnFace{from + edge, Feature::vertex, next}
-                                               : NearestOnFace{from + t * edge, Feature::edge, i};
+      const ConvexEdge& e = edge[i];
+      if (has_area && e.inwards.dot(y) >= e.inwards_offset) continue;
+      const double t = e.along.dot(y - e.from) * e.inverse_length_squared;
+      const int next = i + 1 < face.count ? i + 1 : 0;
+      const NearestOnFace on_edge = t <= 0.0   ? NearestOnFace{e.from, Feature::vertex, i}
+                                    : t >= 1.0 ? NearestOnFace{e.to, Feature::vertex, next}
+                                               : NearestOnFace{e.from + t * e.along, Feature::edge, i};
       const double squared = (y - on_edge.q).squaredNorm();
       if (squared < best_squared) best = on_edge, best_squared = squared;
     }
@@ -317,9 +372,9 @@ struct ConvexTarget {
     double low = (-b - root) / a, high = (-b + root) / a;
     const Vec3 direction = along.x() * disk.u + along.y() * disk.v;  // the chord's, in 3-D
     for (int i = 0; i < face.count; ++i) {  // clip to each edge's inner side
-      const Vec3 from = faceVertex(face, i);
-      const Vec3 inwards = face.unit_normal.cross(faceVertex(face, (i + 1) % face.count) - from);
-      const double start = inwards.dot(m - from), rate = inwards.dot(direction);
+      const ConvexEdge& edge = geometry.edges[face.first_edge + i];
+      const double start = edge.inwards.dot(m) - edge.inwards_offset;
+      const double rate = edge.inwards.dot(direction);
       if (rate == 0.0) {
         if (!(start >= 0.0)) return std::nullopt;
         continue;
@@ -342,11 +397,13 @@ struct ConvexTarget {
   /// polygon's distance from below: the face whose plane is farthest first
   /// (usually the answer: y's foot on it lies inside it), then the others
   /// whose plane distance can still beat the best.
+  /// With `farthest_face_only`, the farthest face's point is returned as it
+  /// is: a point of the hull near y's nearest, for a start.
   template <typename OntoFace>
-  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face) const
+  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face, bool farthest_face_only = false) const
       -> std::optional<std::pair<decltype(onto_face(faces[0])), int>> {
     // Every plane's height of y, in one vectorised pass over the plane columns.
-    thread_local Eigen::VectorXd heights;
+    Eigen::VectorXd& heights = geometry.heights;
     const std::size_t face_count = faces.size();
     heights.noalias() = planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
                         planes.col(3);
@@ -359,13 +416,15 @@ struct ConvexTarget {
     int best_face = farthest;
     double best_distance = (y - best.q).norm();
     // The farthest plane's distance bounds the polytope's: reached, it is optimal.
-    if (best_distance <= farthest_height) return std::pair(best, best_face);
+    if (farthest_face_only || best_distance <= farthest_height) return std::pair(best, best_face);
     // q is the polytope's point nearest y iff no vertex lies beyond q along
     // y - q (the optimality condition (y - q).(v - q) <= 0 for every point v of
     // the hull, checked at its vertices): mostly q is on the farthest face's
-    // boundary and this one support scan settles it.
+    // boundary and this one support scan settles it, up to the rounding of
+    // the scan's products.
     const Vec3 away = y - best.q;
-    if (supportValue(away) <= away.dot(best.q)) return std::pair(best, best_face);
+    const double slack = kDotRounding * away.cwiseAbs().sum() * geometry.bounding_radius;
+    if (supportValue(away) <= away.dot(best.q) + slack) return std::pair(best, best_face);
     for (std::size_t f = 0; f < face_count; ++f) {
       if (int(f) == farthest) continue;
       const double height = height_of[f];
@@ -403,15 +462,18 @@ struct ConvexTarget {
   }
 
   /// The polytope's nearest feature to y (nearestOverFaces with
-  /// nearestOnFace), nullopt when y lies inside every face plane.
-  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y) const {
-    return nearestOverFaces(y, [&](const ConvexFace& face) { return nearestOnFace(y, face); });
+  /// nearestOnFace), nullopt when y lies inside every face plane;
+  /// `farthest_face_only` as nearestOverFaces'.
+  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y,
+                                                            bool farthest_face_only = false) const {
+    return nearestOverFaces(
+        y, [&](const ConvexFace& face) { return nearestOnFace(y, face); }, farthest_face_only);
   }
 
   /// w.v for every vertex v, in one vectorised pass (this thread's buffer,
   /// valid until the next call).
   const Eigen::VectorXd& alongVertices(const Vec3& w) const {
-    thread_local Eigen::VectorXd along;
+    Eigen::VectorXd& along = geometry.along;
     along.noalias() = points.col(0) * w.x() + points.col(1) * w.y() + points.col(2) * w.z();
     return along;
   }
@@ -491,10 +553,10 @@ struct ConvexTraits {
       certifyAlongPair(disk, least_along, upper, p_disk, p_hull, &lower);
       return certifiedOrBound(lower, upper, p_disk, p_hull, scale);
     };
-    const auto at_centre = hull.nearestFeature(disk.c);
+    const auto at_centre = hull.nearestFeature(disk.c, /*farthest_face_only=*/true);
     if (!at_centre) return meetingAt(disk, Vec2::Zero());
     Vec3 p = disk.point(disk.nearest(at_centre->first.q));
-    for (int pass = 0; pass < 2; ++pass) {
+    for (int pass = 0; pass < kFeaturePasses; ++pass) {
       const auto at = hull.nearestFeature(p);
       if (!at) {
         LeafToDisk answer;
@@ -504,38 +566,45 @@ struct ConvexTraits {
       }
       const auto& [nearest, face_index] = *at;
       const ConvexFace& face = hull.faces[face_index];
+      Vec3 next;  // the disk's point of this feature's pair, for the next pass
       if (nearest.feature == Feature::vertex) {
-        const Vec3 p_disk = disk.point(disk.nearest(nearest.q));
-        return certified((nearest.q - p_disk).norm(), p_disk, nearest.q);
-      }
-      if (nearest.feature == Feature::edge) {
-        const Vec3 from = hull.faceVertex(face, nearest.index);
-        const Vec3 to = hull.faceVertex(face, (nearest.index + 1) % face.count);
-        const SegmentToDisk edge = segmentToDisk(disk, from, to);
+        next = disk.point(disk.nearest(nearest.q));
+        if (LeafToDisk by_vertex = certified((nearest.q - next).norm(), next, nearest.q);
+            by_vertex.exact) {
+          return by_vertex;
+        }
+      } else if (nearest.feature == Feature::edge) {
+        const ConvexEdge& on = hull.geometry.edges[face.first_edge + nearest.index];
+        const SegmentToDisk edge = segmentToDisk(disk, on.from, on.to);
         if (LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
             by_edge.exact) {
           return by_edge;
         }
-        if (const auto common = segmentCrossingWithinRim(disk, from, to)) {
+        if (const auto common = segmentCrossingWithinRim(disk, on.from, on.to)) {
           return meetingAt(disk, *common);
         }
-        return not_settled;
+        next = edge.p_disk;
+      } else {
+        next = disk.lowestAlong(face.unit_normal);
+        const auto below = hull.nearestOnFace(next, face);
+        const double next_height = face.unit_normal.dot(next - below.q);
+        if (!(next_height > 0.0)) {
+          // p lies beyond the face's plane, the deepest point on or inside it:
+          // the segment between them crosses the plane at m.
+          const double p_height = face.unit_normal.dot(p) - face.offset;
+          const Vec3 m = p + (p_height / (p_height - next_height)) * (next - p);
+          if (const auto common = hull.chordWithinRim(disk, face, m)) return meetingAt(disk, *common);
+          return not_settled;
+        }
+        if (below.feature == Feature::face) {
+          if (LeafToDisk by_face = certified((next - below.q).norm(), next, below.q);
+              by_face.exact) {
+            return by_face;
+          }
+        }
       }
-      const Vec3 deepest = disk.lowestAlong(face.unit_normal);
-      const auto below = hull.nearestOnFace(deepest, face);
-      const double deepest_height = face.unit_normal.dot(deepest - below.q);
-      if (!(deepest_height > 0.0)) {
-        // p lies beyond the face's plane, the deepest point on or inside it:
-        // the segment between them crosses the plane at m.
-        const double p_height = face.unit_normal.dot(p) - face.offset;
-        const Vec3 m = p + (p_height / (p_height - deepest_height)) * (deepest - p);
-        if (const auto common = hull.chordWithinRim(disk, face, m)) return meetingAt(disk, *common);
-        return not_settled;
-      }
-      if (below.feature == Feature::face) {
-        return certified((deepest - below.q).norm(), deepest, below.q);
-      }
-      p = deepest;
+      if (next == p) break;  // a pair whose certificate stays open: no progress
+      p = next;
     }
     return not_settled;
   }
