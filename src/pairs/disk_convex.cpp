@@ -81,6 +81,7 @@ struct ConvexGeometry {
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
+  Vec3 centre = Vec3::Zero();    ///< the vertices' mean, where the closed form starts
   /// Scratch for the height and support scans (one entry per face, per
   /// vertex): the geometry is this thread's own (ConvexGeometryCache), so its
   /// buffers need no thread_local lookup per scan.
@@ -198,6 +199,7 @@ struct ConvexTarget {
       geometry.points.row(Eigen::Index(i)) = v.transpose();
       geometry.bounding_radius = std::max(geometry.bounding_radius, safeNorm(v));
     }
+    geometry.centre = geometry.points.colwise().mean().transpose();
     const std::vector<int>& list = shape.getFaces();
     std::vector<ConvexFace>& faces = geometry.faces;
     int& largest_face = geometry.largest_face;
@@ -397,10 +399,8 @@ struct ConvexTarget {
   /// polygon's distance from below: the face whose plane is farthest first
   /// (usually the answer: y's foot on it lies inside it), then the others
   /// whose plane distance can still beat the best.
-  /// With `farthest_face_only`, the farthest face's point is returned as it
-  /// is: a point of the hull near y's nearest, for a start.
   template <typename OntoFace>
-  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face, bool farthest_face_only = false) const
+  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face) const
       -> std::optional<std::pair<decltype(onto_face(faces[0])), int>> {
     // Every plane's height of y, in one vectorised pass over the plane columns.
     Eigen::VectorXd& heights = geometry.heights;
@@ -416,7 +416,7 @@ struct ConvexTarget {
     int best_face = farthest;
     double best_distance = (y - best.q).norm();
     // The farthest plane's distance bounds the polytope's: reached, it is optimal.
-    if (farthest_face_only || best_distance <= farthest_height) return std::pair(best, best_face);
+    if (best_distance <= farthest_height) return std::pair(best, best_face);
     // q is the polytope's point nearest y iff no vertex lies beyond q along
     // y - q (the optimality condition (y - q).(v - q) <= 0 for every point v of
     // the hull, checked at its vertices): mostly q is on the farthest face's
@@ -462,12 +462,9 @@ struct ConvexTarget {
   }
 
   /// The polytope's nearest feature to y (nearestOverFaces with
-  /// nearestOnFace), nullopt when y lies inside every face plane;
-  /// `farthest_face_only` as nearestOverFaces'.
-  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y,
-                                                            bool farthest_face_only = false) const {
-    return nearestOverFaces(
-        y, [&](const ConvexFace& face) { return nearestOnFace(y, face); }, farthest_face_only);
+  /// nearestOnFace), nullopt when y lies inside every face plane.
+  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y) const {
+    return nearestOverFaces(y, [&](const ConvexFace& face) { return nearestOnFace(y, face); });
   }
 
   /// w.v for every vertex v, in one vectorised pass (this thread's buffer,
@@ -517,28 +514,27 @@ struct ConvexTraits {
   static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
     return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
   }
-  /// The polytope by its nearest feature, as the box's closed form
-  /// (alignedBoxToDiskByNearestFeature; docs/disk_shape_distance.md, section
-  /// 4): q = the hull's point nearest the disk's centre, p = the disk point
-  /// nearest q, and the hull's feature nearest p (nearestFeature), solved in
-  /// closed form:
-  ///  * none, p inside every face plane: p is a common point (the centre, when
-  ///    it lies inside them);
+  /// The polytope by its nearest feature (docs/disk_shape_distance.md,
+  /// section 4), passes of an alternating projection whose hull side is a
+  /// feature solved exactly against the disk: from p, the disk's point nearest
+  /// the hull's centre (the vertices' mean), the hull's feature nearest p
+  /// (nearestFeature) and its pair with the disk:
+  ///  * none, p inside every face plane: p is a common point;
   ///  * a vertex: it and its nearest disk point;
   ///  * an edge: segmentToDisk; where the disk meets the edge, its crossing of
   ///    the disk's plane within the rim is a common point
   ///    (segmentCrossingWithinRim);
-  ///  * a face: the disk's point deepest towards it with its foot, if the foot
-  ///    lies inside the face (the face's plane then separates the sets); if it
-  ///    lies beyond the polygon, that point's feature instead, once; if it
-  ///    reaches the face's plane, the disk's chord in that plane meets the
-  ///    face at a common point (chordWithinRim), or not settled.
-  /// A pair is exact when the certificate along it, with the vertices' least
-  /// value, closes within kShapeGapTolerance of the scene (certifiedOrBound):
-  /// the hull's nearest feature to the disk's nearest point is the optimal
-  /// feature. Not exact (a certificate left open, a chord beside the face)
-  /// means only "not settled here": the generic solver answers. A flat
-  /// polytope, whose plane tests cannot tell its inside, is left to it.
+  ///  * a face: the disk's point deepest towards it with its foot on the
+  ///    face's plane, a pair when the foot lies inside the face (the plane
+  ///    then separates the sets); if that point reaches the plane, the disk's
+  ///    chord in the plane meets the face at a common point (chordWithinRim),
+  ///    or the pass ends not settled.
+  /// A pair is the answer when the certificate along it, with the vertices'
+  /// least value, closes within kShapeGapTolerance of the scene
+  /// (certifiedOrBound); else its disk point is the next pass's p, up to
+  /// kFeaturePasses. Not exact means only "not settled here": the generic
+  /// solver answers. A flat polytope, whose plane tests cannot tell its
+  /// inside, is left to it.
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Convex<S>& convex,
                                double scale) {
     using Feature = typename ConvexTarget<S>::Feature;
@@ -553,9 +549,7 @@ struct ConvexTraits {
       certifyAlongPair(disk, least_along, upper, p_disk, p_hull, &lower);
       return certifiedOrBound(lower, upper, p_disk, p_hull, scale);
     };
-    const auto at_centre = hull.nearestFeature(disk.c, /*farthest_face_only=*/true);
-    if (!at_centre) return meetingAt(disk, Vec2::Zero());
-    Vec3 p = disk.point(disk.nearest(at_centre->first.q));
+    Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
       const auto at = hull.nearestFeature(p);
       if (!at) {
