@@ -528,7 +528,7 @@ struct ConvexTraits {
   ///    face's plane, a pair when the foot lies inside the face (the plane
   ///    then separates the sets); if that point reaches the plane, the disk's
   ///    chord in the plane meets the face at a common point (chordWithinRim),
-  ///    or the pass ends not settled.
+  ///    or passes beside it, and the next pass starts from the chord.
   /// A pair is the answer when the certificate along it, with the vertices'
   /// least value, closes within kShapeGapTolerance of the scene
   /// (certifiedOrBound); else its disk point is the next pass's p, up to
@@ -588,9 +588,8 @@ struct ConvexTraits {
           const double p_height = face.unit_normal.dot(p) - face.offset;
           const Vec3 m = p + (p_height / (p_height - next_height)) * (next - p);
           if (const auto common = hull.chordWithinRim(disk, face, m)) return meetingAt(disk, *common);
-          return not_settled;
-        }
-        if (below.feature == Feature::face) {
+          next = m;  // the chord passes beside the face: on to the feature nearest it
+        } else if (below.feature == Feature::face) {
           if (LeafToDisk by_face = certified((next - below.q).norm(), next, below.q);
               by_face.exact) {
             return by_face;
