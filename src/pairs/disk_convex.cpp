@@ -526,7 +526,8 @@ struct ConvexTraits {
   ///    (segmentCrossingWithinRim);
   ///  * a face: the disk's point deepest towards it with its foot on the
   ///    face's plane, a pair when the foot lies inside the face (the plane
-  ///    then separates the sets); if that point reaches the plane, the disk's
+  ///    then separates the sets), else the face's vertex or edge nearest that
+  ///    point, paired as above; if that point reaches the plane, the disk's
   ///    chord in the plane meets the face at a common point (chordWithinRim),
   ///    or passes beside it, and the next pass starts from the chord.
   /// A pair is the answer when the certificate along it, with the vertices'
@@ -560,24 +561,27 @@ struct ConvexTraits {
       }
       const auto& [nearest, face_index] = *at;
       const ConvexFace& face = hull.faces[face_index];
-      Vec3 next;  // the disk's point of this feature's pair, for the next pass
-      if (nearest.feature == Feature::vertex) {
-        next = disk.point(disk.nearest(nearest.q));
-        if (LeafToDisk by_vertex = certified((nearest.q - next).norm(), next, nearest.q);
-            by_vertex.exact) {
-          return by_vertex;
+      // The pair of a vertex or an edge of `face` with the disk, certified, and
+      // its disk point as the next pass's start; a common point where the
+      // edge crosses the disk within the rim.
+      Vec3 next;
+      const auto against_boundary = [&](const typename ConvexTarget<S>::NearestOnFace& at_boundary) {
+        if (at_boundary.feature == Feature::vertex) {
+          next = disk.point(disk.nearest(at_boundary.q));
+          return certified((at_boundary.q - next).norm(), next, at_boundary.q);
         }
-      } else if (nearest.feature == Feature::edge) {
-        const ConvexEdge& on = hull.geometry.edges[face.first_edge + nearest.index];
+        const ConvexEdge& on = hull.geometry.edges[face.first_edge + at_boundary.index];
         const SegmentToDisk edge = segmentToDisk(disk, on.from, on.to);
-        if (LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
-            by_edge.exact) {
-          return by_edge;
-        }
+        next = edge.p_disk;
+        const LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
+        if (by_edge.exact) return by_edge;
         if (const auto common = segmentCrossingWithinRim(disk, on.from, on.to)) {
           return meetingAt(disk, *common);
         }
-        next = edge.p_disk;
+        return not_settled;
+      };
+      if (nearest.feature != Feature::face) {
+        if (LeafToDisk answer = against_boundary(nearest); answer.exact) return answer;
       } else {
         next = disk.lowestAlong(face.unit_normal);
         const auto below = hull.nearestOnFace(next, face);
@@ -594,6 +598,10 @@ struct ConvexTraits {
               by_face.exact) {
             return by_face;
           }
+        } else if (LeafToDisk answer = against_boundary(below); answer.exact) {
+          // The deepest point lies beyond the face's boundary: the face's
+          // feature nearest it.
+          return answer;
         }
       }
       if (next == p) break;  // a pair whose certificate stays open: no progress
