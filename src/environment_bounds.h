@@ -160,12 +160,13 @@ struct LeafToDisk {
 
 /// A leaf whose best upper bound (the pair p_disk, p_leaf, `upper` apart) and
 /// best lower bound are known: exact when they meet within kShapeGapTolerance
-/// of the scene (the solver's own stopping test), else the lower bound (0 for
-/// NaN).
+/// of the scene (the solver's own stopping test) plus `mismatch` (a Target's
+/// supportMismatch: the bounds of a Convex with non-planar faces cannot meet
+/// closer), else the lower bound (0 for NaN).
 inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_disk,
-                                   const Vec3& p_leaf, double scale) {
+                                   const Vec3& p_leaf, double scale, double mismatch = 0.0) {
   LeafToDisk answer;
-  if (upper - lower <= kShapeGapTolerance * scale) {
+  if (upper - lower <= kShapeGapTolerance * scale + mismatch) {
     answer.exact = true;
     answer.distance = upper;
     answer.certified = std::min(lower, upper);

@@ -531,8 +531,9 @@ struct ConvexTraits {
   ///    chord in the plane meets the face at a common point (chordWithinRim),
   ///    or passes beside it, and the next pass starts from the chord.
   /// A pair is the answer when the certificate along it, with the vertices'
-  /// least value, closes within kShapeGapTolerance of the scene
-  /// (certifiedOrBound); else its disk point is the next pass's p, up to
+  /// least value, closes within kShapeGapTolerance of the scene plus the
+  /// faces' thickness, as the generic solver's (supportMismatch;
+  /// certifiedOrBound); else its disk point is the next pass's p, up to
   /// kFeaturePasses. Not exact means only "not settled here": the generic
   /// solver answers. A flat polytope, whose plane tests cannot tell its
   /// inside, is left to it.
@@ -548,7 +549,7 @@ struct ConvexTraits {
       // pair that only nearly touches is not taken for the distance.
       double lower = -std::numeric_limits<double>::infinity();
       certifyAlongPair(disk, least_along, upper, p_disk, p_hull, &lower);
-      return certifiedOrBound(lower, upper, p_disk, p_hull, scale);
+      return certifiedOrBound(lower, upper, p_disk, p_hull, scale, hull.supportMismatch());
     };
     Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
