@@ -529,7 +529,8 @@ struct ConvexTraits {
   ///    then separates the sets), else the face's vertex or edge nearest that
   ///    point, paired as above; if that point reaches the plane, the disk's
   ///    chord in the plane meets the face at a common point (chordWithinRim),
-  ///    or passes beside it, and the next pass starts from the chord.
+  ///    or passes beside it, and the face's vertex or edge nearest the chord's
+  ///    point m is paired instead.
   /// A pair is the answer when the certificate along it, with the vertices'
   /// least value, closes within kShapeGapTolerance of the scene plus the
   /// faces' thickness, as the generic solver's (supportMismatch;
@@ -593,7 +594,12 @@ struct ConvexTraits {
           const double p_height = face.unit_normal.dot(p) - face.offset;
           const Vec3 m = p + (p_height / (p_height - next_height)) * (next - p);
           if (const auto common = hull.chordWithinRim(disk, face, m)) return meetingAt(disk, *common);
-          next = m;  // the chord passes beside the face: on to the feature nearest it
+          // The chord passes beside the face: the face's vertex or edge
+          // nearest m.
+          next = m;
+          if (const auto beside = hull.nearestOnFace(m, face); beside.feature != Feature::face) {
+            if (LeafToDisk answer = against_boundary(beside); answer.exact) return answer;
+          }
         } else if (below.feature == Feature::face) {
           if (LeafToDisk by_face = certified((next - below.q).norm(), next, below.q);
               by_face.exact) {
