@@ -303,12 +303,16 @@ struct PlaneSection {
   }
 };
 
-/// A leaf met by the disk at the section's common point s: distance 0.
-inline LeafToDisk meetingAt(const DiskInShape& disk, const Vec2& s) {
+/// A leaf met by the disk at a common point: distance 0.
+inline LeafToDisk meetingAt(const Vec3& common_point) {
   LeafToDisk answer;
   answer.exact = true;
-  answer.p_disk = answer.p_leaf = disk.point(s);
+  answer.p_disk = answer.p_leaf = common_point;
   return answer;
+}
+/// The same at the disk's point of in-plane coordinates s (a section's common point).
+inline LeafToDisk meetingAt(const DiskInShape& disk, const Vec2& s) {
+  return meetingAt(disk.point(s));
 }
 
 /// The distance from the origin to the closed 2D triangle p0 p1 p2 (or a lower

@@ -16,6 +16,7 @@
 #include <random>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -341,6 +342,37 @@ void expectConvexCasesInClosedForm() {
 TEST(DiskShapeCases, ConvexVertexEdgeFaceAndCommonPointInClosedForm) {
   expectConvexCasesInClosedForm<double>();
   expectConvexCasesInClosedForm<float>();
+}
+
+// Overlaps settled by the closed forms, in float and double, each at the
+// common point its closed form names (the generic solver, which also reports
+// 0 iterations where its start is a common point, names another): a disk (r =
+// 1) centred at (0.3, 0, 0.4) with normal (1, 0, 1) / sqrt(2), whose plane
+// the axis of a capsule (r = 0.5, lz = 2) crosses at (0, 0, 0.7), 0.42 from
+// the centre: the disk's point nearest the axis segment; a disk in the plane x = 0.1 through a cone
+// (r = 0.5, lz = 1), centred at (0.1, 0.2, -0.1), whose point nearest the
+// axis point at the centroid's height z = -0.25, (0.1, 0, -0.25), is 0.1 from
+// the axis, where the cone's radius is 0.375. Distance 0, that point as both.
+template <typename S>
+void expectOverlapsInClosedForm() {
+  const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
+  const auto expect_common_point = [&](const auto& shape, const Transform3d& X_WD,
+                                       const Vector3d& common) {
+    SCOPED_TRACE(typeid(shape).name());
+    const auto result = fcl_disk::diskShapeDistance(S(1), X_WD.cast<S>(), shape,
+                                                    fcl::Transform3<S>::Identity());
+    EXPECT_EQ(result.distance, S(0));
+    EXPECT_NEAR((result.p_W_disk.template cast<double>() - common).norm(), 0.0, tolerance);
+    EXPECT_NEAR((result.p_W_shape.template cast<double>() - common).norm(), 0.0, tolerance);
+  };
+  expect_common_point(fcl::Capsule<S>(S(0.5), S(2)), at({0.3, 0, 0.4}, {1, 0, 1}), {0, 0, 0.7});
+  expect_common_point(fcl::Cone<S>(S(0.5), S(1)), at({0.1, 0.2, -0.1}, Vector3d::UnitX()),
+                      {0.1, 0, -0.25});
+}
+
+TEST(DiskShapeCases, CapsuleAndConeOverlapsInClosedForm) {
+  expectOverlapsInClosedForm<double>();
+  expectOverlapsInClosedForm<float>();
 }
 
 // A needle: an ellipsoid with one semi-axis of 0.1 and two far below any

@@ -44,8 +44,10 @@ struct CapsuleTraits {
   /// The axis segment's nearest pair (segmentToDisk), moved by the radius
   /// along w (from the disk's point to the segment's), certified along the
   /// unit w: min over the capsule of w.y - h_K(w), its core's support less the
-  /// radius (certificateAlong without renormalising w). Pairs within touching
-  /// are left to the generic solver, which decides overlaps. Flattened: the
+  /// radius (certificateAlong without renormalising w). A disk point within
+  /// the radius of the segment is a common point (distance 0, that point as
+  /// both); pairs apart by less than touching are left to the generic
+  /// solver. Flattened: the
   /// segment solver is inlined here, its ends constants of the axis, which
   /// takes less time than the call (docs/performance.md, "A Disk against
   /// FCL's primitives").
@@ -55,6 +57,7 @@ struct CapsuleTraits {
     const SegmentToDisk axis = segmentToDisk(disk, Vec3(0.0, 0.0, -half_length),
                                              Vec3(0.0, 0.0, half_length));
     const double upper = axis.distance - radius;
+    if (upper <= 0.0) return meetingAt(axis.p_disk);
     if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
     const Vec3 w = (axis.p_segment - axis.p_disk) / axis.distance;
     const double lower = w.dot(target(capsule).support(-w)) - radius - disk.support(w);
