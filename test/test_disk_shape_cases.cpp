@@ -352,7 +352,10 @@ TEST(DiskShapeCases, ConvexVertexEdgeFaceAndCommonPointInClosedForm) {
 // the centre: the disk's point nearest the axis segment; a disk in the plane x = 0.1 through a cone
 // (r = 0.5, lz = 1), centred at (0.1, 0.2, -0.1), whose point nearest the
 // axis point at the centroid's height z = -0.25, (0.1, 0, -0.25), is 0.1 from
-// the axis, where the cone's radius is 0.375. Distance 0, that point as both.
+// the axis, where the cone's radius is 0.375; the first disk again and an
+// ellipsoid of semi-axes (0.5, 0.6, 0.7), the disk's point nearest the centre
+// (0.35, 0, 0.35) inside it ((0.35 / 0.5)^2 + (0.35 / 0.7)^2 = 0.74). Distance
+// 0, that point as both.
 template <typename S>
 void expectOverlapsInClosedForm() {
   const double tolerance = std::is_same<S, float>::value ? 1e-6 : kExact;
@@ -368,9 +371,11 @@ void expectOverlapsInClosedForm() {
   expect_common_point(fcl::Capsule<S>(S(0.5), S(2)), at({0.3, 0, 0.4}, {1, 0, 1}), {0, 0, 0.7});
   expect_common_point(fcl::Cone<S>(S(0.5), S(1)), at({0.1, 0.2, -0.1}, Vector3d::UnitX()),
                       {0.1, 0, -0.25});
+  expect_common_point(fcl::Ellipsoid<S>(S(0.5), S(0.6), S(0.7)), at({0.3, 0, 0.4}, {1, 0, 1}),
+                      {0.35, 0, 0.35});
 }
 
-TEST(DiskShapeCases, CapsuleAndConeOverlapsInClosedForm) {
+TEST(DiskShapeCases, CapsuleConeAndEllipsoidOverlapsInClosedForm) {
   expectOverlapsInClosedForm<double>();
   expectOverlapsInClosedForm<float>();
 }

@@ -1,5 +1,7 @@
-// Disk - fcl::Ellipsoid: the generic solver with the ellipsoid's projection (the
-// root t of Eberly's secular equation by safeguarded Newton) and its support.
+// Disk - fcl::Ellipsoid: a common point where the disk's point nearest the
+// centre lies inside, else the generic solver with the ellipsoid's projection
+// (the root t of Eberly's secular equation by safeguarded Newton) and its
+// support.
 // docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 
@@ -135,6 +137,24 @@ struct EllipsoidTraits {
       if (e[i] < kFlatSemiAxis) e[i] = 0.0;
     }
     return EllipsoidTarget{e};
+  }
+  /// Overlaps only (docs/disk_shape_distance.md, section 4): the disk's point
+  /// nearest the centre, when it lies in the ellipsoid, is a common point
+  /// (distance 0). A separated pair has no closed form (the projection is a
+  /// root of the secular equation): not exact, the generic solver answers.
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Ellipsoid<S>& ellipsoid,
+                               double /*scale*/) {
+    const Vec3 x = disk.point(disk.nearest(Vec3::Zero()));
+    const Vec3 e = target(ellipsoid).e;
+    double level = 0.0;  // sum (x_i / e_i)^2; a flat axis holds only x_i = 0
+    for (int i = 0; i < 3; ++i) {
+      if (e[i] > 0.0) {
+        level += (x[i] / e[i]) * (x[i] / e[i]);
+      } else if (x[i] != 0.0) {
+        return LeafToDisk{};
+      }
+    }
+    return level <= 1.0 ? meetingAt(x) : LeafToDisk{};
   }
   /// The principal axes.
   template <typename Search>
