@@ -555,12 +555,7 @@ struct ConvexTraits {
     Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
       const auto at = hull.nearestFeature(p);
-      if (!at) {
-        LeafToDisk answer;
-        answer.exact = true;
-        answer.p_disk = answer.p_leaf = p;
-        return answer;
-      }
+      if (!at) return meetingAt(p);
       const auto& [nearest, face_index] = *at;
       const ConvexFace& face = hull.faces[face_index];
       // The pair of a vertex or an edge of `face` with the disk, certified, and
