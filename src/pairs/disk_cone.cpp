@@ -151,13 +151,16 @@ void addConeSideCandidates(const DiskInShape& disk, double radius, double half_l
 /// far under double's resolution of the angle.
 constexpr int kMaxSideNewtonSteps = 8;
 constexpr double kSideAngleTolerance = 1e-9;
+/// Where Newton has no step (phi concave along the rim, or a turn beyond
+/// kShapeMaxRimStep), the side's iteration turns this many radians down phi's
+/// slope instead.
+constexpr double kSideDescentTurn = 0.5;
 
 /// Axis points, at these heights relative to the half length, whose nearest
 /// disk points are tried for a common point of an overlapping disk and cone
 /// that the apex, side and base cases leave (ConeTraits::commonPointNearAxis):
 /// the centroid's height first (-1/2). On the report's 2,000 cone cases
-/// (bench/disk_shape_cases.h) the closed form settles 1,848 with them, 1,678
-/// without.
+/// (bench/disk_shape_cases.h) they settle 170 overlaps the three cases leave.
 constexpr double kAxisProbeHeights[] = {-0.5, 0.0, -1.0, 0.5};
 
 /// Where the disk's point least over the side's line has its foot, when not
@@ -273,10 +276,11 @@ struct ConeTraits {
   /// the disk it is least on the rim, or where the disk meets the axis, which
   /// is left to the generic solver) by Newton in the rim angle on
   /// phi(theta) = 2h rho + R z, from the rim point down phi's gradient at the
-  /// centre; the certificate along the pair proves it. Not exact (the generic
-  /// solver then answers) where an iterate reaches the side's line, the
-  /// iteration meets no positive curvature or does not converge within
-  /// kMaxSideNewtonSteps, or its foot is off the side (*past says which end).
+  /// centre (a turn of kSideDescentTurn down the slope where Newton has no
+  /// step); the certificate along the pair proves it. Not exact (the generic
+  /// solver then answers) where an iterate reaches the side's line, stops at
+  /// a maximum along the rim or does not converge within kMaxSideNewtonSteps,
+  /// or its foot is off the side (*past says which end).
   static LeafToDisk sideAgainstDisk(const ConeTarget& cone_target, const DiskInShape& disk,
                                     double scale, SideEnd* past) {
     const double h = cone_target.half_length, radius = cone_target.radius;
@@ -321,15 +325,20 @@ struct ConeTraits {
       const double rho_curvature = w_turn.squaredNorm() - w.dot(from_centre) -
                                    w_w_turn * w_w_turn * inverse_rho_squared;  // rho rho''
       const double curvature = height * inverse_rho * rho_curvature - radius * z_offset;
+      // Where phi is concave along the rim or Newton's turn would exceed
+      // kShapeMaxRimStep, a turn of kSideDescentTurn down the slope instead
+      // (the curvature that makes Newton's turn that long).
+      double turn_curvature = curvature;
       if (!(curvature > 0.0 && std::abs(slope) <= kShapeMaxRimStep * curvature)) {
-        return LeafToDisk{};
+        if (!(std::abs(slope) > 0.0)) return LeafToDisk{};  // a maximum along the rim
+        turn_curvature = std::abs(slope) / kSideDescentTurn;
       }
-      // The turn by dtheta = -slope / curvature as the Cayley rotation over
-      // one denominator (as the disk-disk rim iteration): one division.
-      const double four_curvature_squared = 4.0 * curvature * curvature;
+      // The turn by dtheta = -slope / turn_curvature as the Cayley rotation
+      // over one denominator (as the disk-disk rim iteration): one division.
+      const double four_curvature_squared = 4.0 * turn_curvature * turn_curvature;
       const double inverse = 1.0 / (four_curvature_squared + slope * slope);
       const double cos = (four_curvature_squared - slope * slope) * inverse;
-      const double sin = -4.0 * slope * curvature * inverse;
+      const double sin = -4.0 * slope * turn_curvature * inverse;
       radial = cos * radial + sin * tangent;
       converged = std::abs(slope) <= kSideAngleTolerance * curvature;
     }
