@@ -11,6 +11,8 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace fcl_disk {
@@ -27,8 +29,9 @@ constexpr double kParallelFaceSine = 1e-12;
 /// to |w|_1 B: a few eps (three products and two sums). The projection's
 /// optimality test compares w.v with w.q where q lies on an edge or at a
 /// vertex, whose ends tie with q exactly: without this slack rounding fails
-/// the test about half the time and sends the projection through every face.
-/// Accepting q within it moves the distance by its square, far below eps.
+/// the test where q is optimal and sends the projection on through the other
+/// faces (docs/disk_shape_distance.md, section 4). Accepting q within it moves
+/// the distance by its square, far below eps.
 constexpr double kDotRounding = 4 * std::numeric_limits<double>::epsilon();
 
 /// The closed form's passes (ConvexTraits::closedForm): each moves to the
@@ -95,7 +98,7 @@ struct ConvexGeometry {
 /// The geometry of the Convex queried last on this thread, with a copy of the
 /// lists it was computed from: a planner queries the same hull many times in a
 /// row, and computing the planes costs more than the query's projections
-/// (76 faces: ~14k instructions). A hit needs the lists equal value for value,
+/// (76 faces: ~14k instructions). A hit needs the lists equal bit for bit,
 /// so a hull destroyed and another built at the same address is recomputed.
 template <typename S>
 struct ConvexGeometryCache {
@@ -151,7 +154,7 @@ struct ConvexTarget {
   }
 
   /// This thread's geometry of `shape`, from the cache when its lists are
-  /// unchanged (compared value for value); `shape` is then the cache's
+  /// unchanged (compared bit for bit, sameBytes); `shape` is then the cache's
   /// verified hull.
   static const ConvexGeometry& geometryOf(const fcl::Convex<S>& shape) {
     ConvexGeometryCache<S>& cached = cache();
@@ -245,10 +248,10 @@ struct ConvexTarget {
       faces.push_back(ConvexFace{at + 1, count, geometry.edges.size(), unit,
                                  unit.dot(vertex(index[0])), centre, radius});
       for (int i = 0; i < count; ++i) {
-        const Vec3 from = vertex(index[i]), along = vertex(index[(i + 1) % count]) - from;
+        const Vec3 from = vertex(index[i]), to = vertex(index[(i + 1) % count]);
+        const Vec3 along = to - from, inwards = unit.cross(along);
         const double length_squared = along.squaredNorm();
-        const Vec3 inwards = unit.cross(along);
-        geometry.edges.push_back(ConvexEdge{from, vertex(index[(i + 1) % count]), along,
+        geometry.edges.push_back(ConvexEdge{from, to, along,
                                             length_squared > 0.0 ? 1.0 / length_squared : 0.0,
                                             inwards, inwards.dot(from)});
       }
