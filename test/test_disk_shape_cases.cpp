@@ -373,6 +373,12 @@ void expectOverlapsInClosedForm() {
                       {0.1, 0, -0.25});
   expect_common_point(fcl::Ellipsoid<S>(S(0.5), S(0.6), S(0.7)), at({0.3, 0, 0.4}, {1, 0, 1}),
                       {0.35, 0, 0.35});
+  // A flat cone (lz = 0: the disk of radius 0.5 at z = 0) and a disk in its
+  // plane centred at (3, 0, 0): the disk's point nearest the axis lies in the
+  // plane, 2 from the axis, not in the cone. Rims 3 - 1 - 0.5 apart.
+  const auto beside_flat_cone = fcl_disk::diskShapeDistance(
+      S(1), at({3, 0, 0}).cast<S>(), fcl::Cone<S>(S(0.5), S(0)), fcl::Transform3<S>::Identity());
+  EXPECT_NEAR(beside_flat_cone.distance, 1.5, tolerance);
 }
 
 TEST(DiskShapeCases, CapsuleConeAndEllipsoidOverlapsInClosedForm) {

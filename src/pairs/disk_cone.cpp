@@ -37,16 +37,21 @@ struct ConeTarget {
     return from + std::clamp(t, 0.0, 1.0) * edge;
   }
 
+  /// Whether y lies in the solid cone: above the base, under the slant side
+  /// A-B (written without a division so that degenerate cones, radius or
+  /// height 0, stay exact).
+  bool contains(const Vec3& y) const {
+    const double h = half_length;
+    const double rho = std::sqrt(y.x() * y.x() + y.y() * y.y());
+    return y.z() >= -h && y.z() <= h && rho <= radius &&
+           2.0 * h * rho + radius * (y.z() - h) <= 0.0;
+  }
+
   Projection project(const Vec3& y) const {
+    if (contains(y)) return Projection{y, FactoredHessian()};
     const double h = half_length;
     const double rho = std::sqrt(y.x() * y.x() + y.y() * y.y());
     const Vec2 m(rho, y.z());
-    // Inside: above the base, under the slant side A-B (written without a
-    // division so that degenerate cones, radius or height 0, stay exact).
-    if (y.z() >= -h && y.z() <= h && rho <= radius &&
-        2.0 * h * rho + radius * (y.z() - h) <= 0.0) {
-      return Projection{y, FactoredHessian()};
-    }
     // Outside, the nearest point is on the slant side A-B or on the base O-B
     // (whose end O lies on the axis, inside the base disk: no corner).
     Vec2 side_edge;
@@ -205,12 +210,9 @@ struct ConeTraits {
   /// when it lies in the solid cone: a common point.
   static std::optional<Vec3> commonPointNearAxis(const ConeTarget& cone_target,
                                                  const DiskInShape& disk) {
-    const double h = cone_target.half_length;
     for (const double height : kAxisProbeHeights) {
-      const Vec3 x = disk.point(disk.nearest(Vec3(0.0, 0.0, height * h)));
-      // In the cone: above the base's plane and within the radius R (h - z) / 2h.
-      const double rho = std::sqrt(x.x() * x.x() + x.y() * x.y());
-      if (x.z() >= -h && 2.0 * h * rho <= cone_target.radius * (h - x.z())) return x;
+      const Vec3 x = disk.point(disk.nearest(Vec3(0.0, 0.0, height * cone_target.half_length)));
+      if (cone_target.contains(x)) return x;
     }
     return std::nullopt;
   }

@@ -23,21 +23,25 @@ constexpr double kFlatSemiAxis = 1e-150;
 struct EllipsoidTarget {
   Vec3 e;
 
+  /// sum (y_i / e_i)^2 over the nonzero axes: y lies within the ellipsoid's
+  /// extent along them iff it is at most 1.
+  double levelOnAxes(const Vec3& y) const {
+    double level = 0.0;
+    for (int i = 0; i < 3; ++i) {
+      if (e[i] > 0.0) level += (y[i] / e[i]) * (y[i] / e[i]);
+    }
+    return level;
+  }
+
   Projection project(const Vec3& y) const {
     // Within the ellipsoid's extent along its nonzero axes: the projection drops
     // the zero-axis coordinates (for a solid ellipsoid, y itself), so D proj is
     // the identity on the nonzero axes and psi's Hessian is 1 on the zero axes.
-    double level = 0.0;
     Vec3 flat_axes = Vec3::Zero(), y_on_axes = y;
     for (int i = 0; i < 3; ++i) {
-      if (e[i] > 0.0) {
-        level += (y[i] / e[i]) * (y[i] / e[i]);
-      } else {
-        flat_axes[i] = 1.0;
-        y_on_axes[i] = 0.0;
-      }
+      if (!(e[i] > 0.0)) flat_axes[i] = 1.0, y_on_axes[i] = 0.0;
     }
-    if (level <= 1.0) return Projection{y_on_axes, FactoredHessian::diagonalOf(flat_axes)};
+    if (levelOnAxes(y) <= 1.0) return Projection{y_on_axes, FactoredHessian::diagonalOf(flat_axes)};
     // q_i = e_i^2 y_i / (t + e_i^2) with t > 0 the root of
     // F(t) = sum (e_i y_i / (t + e_i^2))^2 = 1 (F decreasing). Newton runs on
     // phi(t) = 1 / sqrt(F(t)) - 1, which is nearly linear in t (exactly, for a
@@ -145,16 +149,11 @@ struct EllipsoidTraits {
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Ellipsoid<S>& ellipsoid,
                                double /*scale*/) {
     const Vec3 x = disk.point(disk.nearest(Vec3::Zero()));
-    const Vec3 e = target(ellipsoid).e;
-    double level = 0.0;  // sum (x_i / e_i)^2; a flat axis holds only x_i = 0
-    for (int i = 0; i < 3; ++i) {
-      if (e[i] > 0.0) {
-        level += (x[i] / e[i]) * (x[i] / e[i]);
-      } else if (x[i] != 0.0) {
-        return LeafToDisk{};
-      }
+    const EllipsoidTarget ellipsoid_target = target(ellipsoid);
+    for (int i = 0; i < 3; ++i) {  // a flat axis holds only x_i = 0
+      if (!(ellipsoid_target.e[i] > 0.0) && x[i] != 0.0) return LeafToDisk{};
     }
-    return level <= 1.0 ? meetingAt(x) : LeafToDisk{};
+    return ellipsoid_target.levelOnAxes(x) <= 1.0 ? meetingAt(x) : LeafToDisk{};
   }
   /// The principal axes.
   template <typename Search>
