@@ -34,6 +34,7 @@
 #include <cstddef>
 #include <limits>
 #include <optional>
+#include <utility>
 
 #include "disk_shape_solver.h"
 #include "segment_to_disk.h"
@@ -201,6 +202,29 @@ void certifyAlongPair(const DiskInShape& disk, LeastAlong&& least_along, double 
   if (!(distance > 0.0)) return;
   const Vec3 separation = p_leaf - p_disk;
   *lower = std::max(*lower, (least_along(separation) - disk.support(separation)) / distance);
+}
+
+/// A pair `upper` apart, exact when the certificate along it alone closes
+/// (certifiedOrBound, `mismatch` as there): an overlap makes that certificate
+/// negative, so a pair that only nearly touches is not taken for the distance.
+template <typename LeastAlong>
+LeafToDisk certifiedAlongItself(const DiskInShape& disk, LeastAlong&& least_along, double upper,
+                                const Vec3& p_disk, const Vec3& p_leaf, double scale,
+                                double mismatch = 0.0) {
+  double lower = -std::numeric_limits<double>::infinity();
+  certifyAlongPair(disk, least_along, upper, p_disk, p_leaf, &lower);
+  return certifiedOrBound(lower, upper, p_disk, p_leaf, scale, mismatch);
+}
+
+/// The stretch [low, high] of tau for which the in-plane point s + tau along
+/// lies within the rim (s itself within it, but for rounding): between the
+/// roots of |s + tau along|^2 = r^2. None for along = 0.
+inline std::optional<std::pair<double, double>> stretchWithinRim(const DiskInShape& disk,
+                                                                 const Vec2& s, const Vec2& along) {
+  const double a = along.squaredNorm(), b = s.dot(along), c = s.squaredNorm() - disk.r * disk.r;
+  if (!(a > 0.0)) return std::nullopt;
+  const double root = std::sqrt(std::max(b * b - a * c, 0.0));
+  return std::pair((-b - root) / a, (-b + root) / a);
 }
 
 /// The leaf's edges as candidates for the nearest pair (the rim or the face
@@ -526,12 +550,9 @@ inline std::optional<Vec2> faceChordWithinRim(const DiskInShape& disk, const Vec
                                               const Vec3& h, int j, const Vec3& m) {
   const Vec2 s_m = disk.inPlane(m - disk.c);
   const Vec2 along(-disk.v[j], disk.u[j]);
-  // The chord s_m + tau along within the rim: tau between the roots of
-  // |s_m + tau along|^2 = r^2 (m lies within the rim, but for rounding).
-  const double a = along.squaredNorm(), b = s_m.dot(along), c = s_m.squaredNorm() - disk.r * disk.r;
-  if (!(a > 0.0)) return std::nullopt;
-  const double root = std::sqrt(std::max(b * b - a * c, 0.0));
-  double low = (-b - root) / a, high = (-b + root) / a;
+  const auto chord = stretchWithinRim(disk, s_m, along);
+  if (!chord) return std::nullopt;
+  auto [low, high] = *chord;
   for (const int k : {(j + 1) % 3, (j + 2) % 3}) {  // clip to |y_k - o_k| <= h_k
     const double rate = disk.u[k] * along.x() + disk.v[k] * along.y();
     const double start = m[k] - o[k];
@@ -599,11 +620,7 @@ inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, cons
     }
     const auto least_along = [&](const Vec3& w) { return alignedBoxLeastAlong(o, h, w); };
     const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_box) {
-      // The certificate alone must close: an overlap has it negative, so a
-      // pair that only nearly touches is not taken for the distance.
-      double lower = -std::numeric_limits<double>::infinity();
-      certifyAlongPair(disk, least_along, upper, p_disk, p_box, &lower);
-      return certifiedOrBound(lower, upper, p_disk, p_box, scale);
+      return certifiedAlongItself(disk, least_along, upper, p_disk, p_box, scale);
     };
     if (outside_count == 3) {
       const Vec3 corner = o + side.cwiseProduct(h);

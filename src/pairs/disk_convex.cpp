@@ -369,12 +369,9 @@ struct ConvexTarget {
     const Vec2 s_m = disk.inPlane(m - disk.c);
     const Vec2 normal_in_disk = disk.inPlane(face.unit_normal);
     const Vec2 along(-normal_in_disk.y(), normal_in_disk.x());
-    // s_m + tau along within the rim: tau between the roots of
-    // |s_m + tau along|^2 = r^2 (m lies within the rim, but for rounding).
-    const double a = along.squaredNorm(), b = s_m.dot(along), c = s_m.squaredNorm() - disk.r * disk.r;
-    if (!(a > 0.0)) return std::nullopt;
-    const double root = std::sqrt(std::max(b * b - a * c, 0.0));
-    double low = (-b - root) / a, high = (-b + root) / a;
+    const auto chord = stretchWithinRim(disk, s_m, along);
+    if (!chord) return std::nullopt;
+    auto [low, high] = *chord;
     const Vec3 direction = along.x() * disk.u + along.y() * disk.v;  // the chord's, in 3-D
     for (int i = 0; i < face.count; ++i) {  // clip to each edge's inner side
       const ConvexEdge& edge = geometry.edges[face.first_edge + i];
@@ -549,11 +546,8 @@ struct ConvexTraits {
     if (hull.flat) return not_settled;
     const auto least_along = [&](const Vec3& w) { return hull.alongVertices(w).minCoeff(); };
     const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_hull) {
-      // The certificate alone must close: an overlap has it negative, so a
-      // pair that only nearly touches is not taken for the distance.
-      double lower = -std::numeric_limits<double>::infinity();
-      certifyAlongPair(disk, least_along, upper, p_disk, p_hull, &lower);
-      return certifiedOrBound(lower, upper, p_disk, p_hull, scale, hull.supportMismatch());
+      return certifiedAlongItself(disk, least_along, upper, p_disk, p_hull, scale,
+                                  hull.supportMismatch());
     };
     Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
