@@ -273,10 +273,10 @@ constexpr double kShapeTouchingTolerance = kTouchingTolerance;
 /// carry a few ulps of scale each.
 constexpr double kShapeGradientRounding = 8 * std::numeric_limits<double>::epsilon();
 /// The start: this many alternating projections (disk point nearest X's point
-/// nearest the disk point), from the disk's centre. Each costs one projection,
-/// less than the share of a Newton iteration it saves on random pairs; a third
-/// saved less than it cost (docs/disk_shape_distance.md, section 3).
-constexpr int kStartProjections = 2;
+/// nearest the disk point), from the disk's point nearest X's frame origin
+/// (every primitive's centre). A second projection cost more than the share of
+/// a Newton iteration it saved (docs/disk_shape_distance.md, section 3).
+constexpr int kStartProjections = 1;
 /// The distance goal evaluates the certificate once the step expects to
 /// shorten the distance by less than this many gap tolerances: before that the
 /// iterate is not optimal to the tolerance and the certificate would only cost
@@ -897,9 +897,10 @@ DiskShapeSolution solveDiskShape(const Target& target, const DiskInShape& disk, 
   const double touching = kShapeTouchingTolerance * scale + mismatch;
   DiskShapeSolution face;
   if (faceCase(target, disk, rho, touching, &face)) return face;
-  // Start: kStartProjections alternating projections from the disk's centre.
-  Vec2 start = disk.nearest(target.project(disk.c).q);
-  for (int k = 1; k < kStartProjections; ++k) {
+  // Start: kStartProjections alternating projections from the disk's point
+  // nearest X's frame origin.
+  Vec2 start = disk.nearest(Vec3::Zero());
+  for (int k = 0; k < kStartProjections; ++k) {
     start = disk.nearest(target.project(disk.point(start)).q);
   }
   ShapeIterate at = evaluateAt(target, disk, start);
