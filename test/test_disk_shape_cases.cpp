@@ -212,6 +212,43 @@ TEST(DiskShapeCases, ConeApexSideAndBaseRimInClosedForm) {
   }
 }
 
+// Cones whose nearest feature is not the one the disk's centre suggests: the
+// centre's case fails, and the cone's closed form tries the others (two of the
+// report's cone cases, bench/disk_shape_cases.h: 17, whose nearest point is on
+// the slant side, and 1235, at the apex). Disk r = 0.5 in the cone's frame. They
+// are answered without the generic solver (iterations 0), at the distance of
+// the independent long-double reference (reference_disk_shape.h).
+TEST(DiskShapeCases, ConeFeatureBeyondTheCentresChoiceInClosedForm) {
+  namespace ref = fcl_disk_test::ref;
+  struct ConeCase {
+    double radius, lz;
+    Vector3d centre, normal;
+  };
+  const ConeCase cases[] = {
+      {0.3572109375876576, 0.56298963122002632,
+       {-1.5037063720846882, 0.11779561440018355, -0.023892061305943429},
+       {-0.57401472120263186, 0.17199545578687261, 0.80057770580458398}},
+      {0.27203919382724934, 0.434280985367553,
+       {0.31913529134262475, 0.39863999764673436, 0.13457402275766062},
+       {0.38447796256994116, 0.12473551702909563, 0.91466810761584627}},
+  };
+  for (const ConeCase& c : cases) {
+    const Transform3d X_WD = at(c.centre, c.normal);
+    const auto result =
+        fcl_disk::diskShapeDistance(0.5, X_WD, fcl::Cone<double>(c.radius, c.lz), kIdentity);
+    ref::Cone cone;
+    cone.radius = c.radius, cone.lz = c.lz;
+    const ref::Result truth = ref::referenceDistance(
+        ref::makeDisk(0.5, X_WD.linear().cast<ref::Real>(), X_WD.translation().cast<ref::Real>()),
+        cone);
+    const double scale = 0.5 + std::hypot(c.radius, 0.5 * c.lz) + c.centre.norm();
+    EXPECT_EQ(result.iterations, 0) << c.centre.transpose();
+    EXPECT_NEAR(result.distance, double(truth.distance), kExact * scale) << c.centre.transpose();
+    EXPECT_LE(result.certifiedGap(), kExact * scale);
+    EXPECT_NEAR((result.p_W_disk - result.p_W_shape).norm(), result.distance, kExact * scale);
+  }
+}
+
 // The cylinder r = 0.5, lz = 2 (caps at z = +-1) at the origin, against disks
 // in planes containing the y axis: both are symmetric about y = 0, and a disk
 // point off that plane is farther from the axis than its projection onto it
