@@ -40,6 +40,12 @@
 // included), and Cylinder(r, 0) against Halfspace or Plane segfaults under
 // libccd.
 //
+// Hull sizes: disk_convex_hulls/<N>/<variant>/double, one Convex of N random
+// points on the sphere of radius 0.45 (bench/disk_shape_cases.h's hull, built
+// on first use) at kPoolSize random poses against a disk of radius 0.5 at
+// random poses: the same hull queried again and again, as a planner does.
+// Variants distance_disk_libccd and distance_flat_cylinder_<libccd|indep>.
+//
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_shapes --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
 //   bench_disk_shapes --benchmark_filter='disk_shapes/box/'
@@ -52,7 +58,9 @@
 #include <fcl/narrowphase/collision_object.h>
 #include <fcl/narrowphase/distance.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <cstdint>
 #include <cstdio>
 #include <limits>
@@ -264,6 +272,65 @@ void registerQuery(const Query& q, const char* scalar, int* skipped) {
   });
 }
 
+/// The hull sizes of the disk_convex_hulls benchmarks.
+constexpr int kHullSizes[] = {40, 64, 100, 200, 400, 1000};
+
+/// kPoolSize cases of a disk (and the flat cylinder at its pose) against one
+/// Convex of `vertex_count` random points on a sphere, built on first use.
+const Pool<double>& hullPool(int vertex_count) {
+  static std::vector<std::unique_ptr<Pool<double>>> pools(std::size(kHullSizes));
+  const std::size_t slot =
+      std::size_t(std::find(std::begin(kHullSizes), std::end(kHullSizes), vertex_count) -
+                  std::begin(kHullSizes));
+  if (!pools[slot]) {
+    fcl_disk_test::Random random(kSeed + std::uint64_t(vertex_count));
+    dsc::ShapeSpec spec;
+    spec.kind = ShapeKind::convex40;
+    for (int v = 0; v < vertex_count; ++v) spec.vertices.push_back(0.45 * random.unitVector());
+    dsc::detail::bruteForceHull(spec.vertices, &spec.faces, &spec.num_faces);
+    const std::shared_ptr<fcl::ShapeBase<double>> hull = dsc::makeShape<double>(spec);
+    auto pool = std::make_unique<Pool<double>>();
+    for (std::size_t k = 0; k < kPoolSize; ++k) {
+      const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
+      pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
+      pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
+      pool->shape.push_back(
+          std::make_unique<fcl::CollisionObject<double>>(hull, dsc::detail::randomPose(random)));
+    }
+    pools[slot] = std::move(pool);
+  }
+  return *pools[slot];
+}
+
+void benchHull(benchmark::State& state, int vertex_count, Query q) {
+  const Pool<double>& p = hullPool(vertex_count);
+  std::size_t i = 0;
+  std::int64_t overlaps = 0;
+  for (auto _ : state) {
+    overlaps += runQuery<double>(p, q, i++ & (kPoolSize - 1), nullptr);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["overlap"] =
+      double(overlaps) / double(std::max<std::int64_t>(1, state.iterations()));
+}
+
+void registerHulls() {
+  for (const int vertex_count : kHullSizes) {
+    for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
+                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD},
+                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_INDEP}}) {
+      const std::string name = "disk_convex_hulls/" + std::to_string(vertex_count) + "/" +
+                               variantName(q) + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [vertex_count, q](benchmark::State& st) {
+        benchHull(st, vertex_count, q);
+      });
+    }
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -286,6 +353,7 @@ int main(int argc, char** argv) {
     registerQuery<double>({kind, Variant::collide_disk, fcl::GST_LIBCCD}, "double", &skipped);
     registerQuery<double>({kind, Variant::collide_sphere, fcl::GST_LIBCCD}, "double", &skipped);
   }
+  registerHulls();
   if (skipped)
     std::fprintf(stderr, "bench_disk_shapes: %d variants skipped (probed in a child process)\n",
                  skipped);

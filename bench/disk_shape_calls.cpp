@@ -17,6 +17,10 @@
 //
 //   B="env LD_LIBRARY_PATH=OTHER ./build/bench/disk_shape_calls box float 2000"
 //   farm-bench -n 10 --vs "$B" -- ./build/bench/disk_shape_calls box float 2000
+//
+// `hullN [PASSES]` (hull100, hull1000, ...) runs the 2000 poses against one
+// Convex of N random points on a sphere instead, in double: the scaling of the
+// Convex pair with the hull's size.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -78,9 +82,44 @@ double sumOfDistances(const dsc::ShapeKind& kind, int passes) {
   std::printf("%.1f ns a call (mean, wall clock)\n", elapsed.count() / (double(queries.size()) * passes));
   return sum;
 }
+/// `hullN`: the sum of the distances of `passes` passes over kCases random
+/// disk poses against one Convex of N random points on the sphere of radius
+/// 0.45 (bench/disk_shape_cases.h's hull) at random poses: the same hull
+/// queried again and again, as a planner does; its geometry is built on the
+/// first query.
+double sumOfHullDistances(int vertex_count, int passes) {
+  fcl_disk_test::Random random(kSeed + std::uint64_t(vertex_count));
+  dsc::ShapeSpec spec;
+  spec.kind = dsc::ShapeKind::convex40;
+  for (int v = 0; v < vertex_count; ++v) spec.vertices.push_back(0.45 * random.unitVector());
+  dsc::detail::bruteForceHull(spec.vertices, &spec.faces, &spec.num_faces);
+  const auto hull = dsc::makeShape<double>(spec);
+  std::vector<std::pair<fcl::Transform3<double>, fcl::Transform3<double>>> poses;
+  for (int k = 0; k < kCases; ++k) {
+    const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
+    poses.emplace_back(X_WD, dsc::detail::randomPose(random));
+  }
+  double sum = 0.0;
+  const auto start = std::chrono::steady_clock::now();
+  for (int pass = 0; pass < passes; ++pass) {
+    for (const auto& [X_WD, X_WS] : poses) sum += distanceTo<double>(*hull, X_WD, X_WS);
+  }
+  const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
+  std::printf("%.1f ns a call (mean, wall clock)\n", elapsed.count() / (double(kCases) * passes));
+  return sum;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
+  const int hull_size = argc >= 2 && std::string(argv[1]).rfind("hull", 0) == 0
+                            ? std::atoi(argv[1] + 4) : 0;
+  if (hull_size >= 4) {
+    const int passes = argc >= 3 ? std::atoi(argv[2]) : kDefaultPasses;
+    if (passes < 1) return 2;
+    std::printf("%d calls, sum of distances %.17g\n", kCases * passes,
+                sumOfHullDistances(hull_size, passes));
+    return 0;
+  }
   const dsc::ShapeKind* kind = nullptr;
   for (const dsc::ShapeKind& k : dsc::allShapeKinds()) {
     if (argc >= 2 && std::string(argv[1]) == dsc::shapeName(k)) kind = &k;
@@ -89,7 +128,7 @@ int main(int argc, char** argv) {
   const int passes = argc >= 4 ? std::atoi(argv[3]) : kDefaultPasses;
   if (kind == nullptr || argc > 4 || (argc >= 3 && !in_float && std::string(argv[2]) != "double") ||
       passes < 1) {
-    std::fprintf(stderr, "usage: %s SHAPE [double|float [PASSES]]\nshapes:", argv[0]);
+    std::fprintf(stderr, "usage: %s SHAPE [double|float [PASSES]] | hullN [PASSES]\nshapes:", argv[0]);
     for (const dsc::ShapeKind k : dsc::allShapeKinds()) std::fprintf(stderr, " %s", dsc::shapeName(k));
     std::fprintf(stderr, "\n");
     return 2;

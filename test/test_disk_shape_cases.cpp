@@ -10,8 +10,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -749,6 +751,143 @@ TEST(DiskShapeCases, NearlyParallelPolygonFaces) {
     checkNearlyParallelFaces<double>(kind);
     checkNearlyParallelFaces<float>(kind);
   }
+}
+
+/// A large hull as vertices and faces (counter-clockwise seen from outside).
+struct HullLists {
+  std::vector<Vector3d> vertices;
+  std::vector<std::vector<int>> faces;
+};
+
+/// The polyhedron of `rings` latitude circles of `around` points on the unit
+/// sphere, scaled by `semi_axes`, and the two poles: planar quadrilaterals
+/// between the rings and triangle fans at the poles (strictly convex).
+HullLists ringHull(int rings, int around, const Vector3d& semi_axes) {
+  HullLists hull;
+  hull.vertices.push_back(Vector3d(0, 0, -semi_axes.z()));
+  for (int ring = 0; ring < rings; ++ring) {
+    const double polar = M_PI * (ring + 1) / (rings + 1);
+    for (int k = 0; k < around; ++k) {
+      const double azimuth = 2 * M_PI * k / around;
+      hull.vertices.push_back(semi_axes.cwiseProduct(Vector3d(
+          std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), -std::cos(polar))));
+    }
+  }
+  hull.vertices.push_back(Vector3d(0, 0, semi_axes.z()));
+  const auto at_ring = [&](int ring, int k) { return 1 + ring * around + (k % around); };
+  const int top = int(hull.vertices.size()) - 1;
+  for (int k = 0; k < around; ++k) {
+    hull.faces.push_back({0, at_ring(0, k + 1), at_ring(0, k)});
+    for (int ring = 0; ring + 1 < rings; ++ring) {
+      hull.faces.push_back({at_ring(ring, k), at_ring(ring, k + 1), at_ring(ring + 1, k + 1),
+                            at_ring(ring + 1, k)});
+    }
+    hull.faces.push_back({at_ring(rings - 1, k), at_ring(rings - 1, k + 1), top});
+  }
+  return hull;
+}
+
+/// The cube [-h, h]^3 with each face cut into n x n squares, each split into
+/// two triangles: many coplanar faces (ties everywhere for the face climb and
+/// the vertex clusters).
+HullLists subdividedCube(int n, double h) {
+  HullLists hull;
+  std::map<std::array<int, 3>, int> index;
+  const auto vertex = [&](std::array<int, 3> grid) {
+    const auto [it, added] = index.emplace(grid, int(hull.vertices.size()));
+    if (added) hull.vertices.push_back(h * (Vector3d(grid[0], grid[1], grid[2]) * (2.0 / n) - Vector3d::Ones()));
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const int side : {0, n}) {
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          std::array<int, 4> corner;
+          const int steps[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+          for (int c = 0; c < 4; ++c) {
+            std::array<int, 3> grid{};
+            grid[axis] = side, grid[a] = i + steps[c][0], grid[b] = j + steps[c][1];
+            corner[c] = vertex(grid);
+          }
+          // (a, b, axis) is right-handed: counter-clockwise in (a, b) faces +axis.
+          if (side == n) {
+            hull.faces.push_back({corner[0], corner[1], corner[2]});
+            hull.faces.push_back({corner[0], corner[2], corner[3]});
+          } else {
+            hull.faces.push_back({corner[0], corner[2], corner[1]});
+            hull.faces.push_back({corner[0], corner[3], corner[2]});
+          }
+        }
+      }
+    }
+  }
+  return hull;
+}
+
+// Hulls large enough for the Convex's face climb and vertex clusters
+// (ConvexTarget::climbToHighestPlane, mostAlong): a strictly convex ring hull
+// (130 vertices, 144 faces) and a subdivided cube (98 vertices, 192 coplanar
+// triangles), 500 random disk poses each, in double and float: every
+// certificate closes, and on the first 25 the distance and the lower bound
+// agree with the independent long-double reference.
+template <typename S>
+void checkLargeHull(const HullLists& lists, const char* name) {
+  namespace ref = fcl_disk_test::ref;
+  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+  for (const Vector3d& v : lists.vertices) vertices->push_back(v.cast<S>());
+  auto face_list = std::make_shared<std::vector<int>>();
+  for (const auto& face : lists.faces) {
+    face_list->push_back(int(face.size()));
+    face_list->insert(face_list->end(), face.begin(), face.end());
+  }
+  const fcl::Convex<S> hull(vertices, int(lists.faces.size()), face_list);
+  ref::Convex reference_hull;
+  for (const auto& v : *vertices) reference_hull.vertices.push_back(v.template cast<ref::Real>());
+  reference_hull.faces = lists.faces;
+  const double tolerance = std::is_same<S, float>::value ? 8 * 1.2e-7 : kExact;
+  constexpr int kReferencePoses = 25;
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int failures = 0;
+  for (int i = 0; i < 500 && failures < 5; ++i) {
+    const Vector3d centre = 2.5 * Vector3d(unit(rng), unit(rng), unit(rng));
+    const Vector3d normal(unit(rng), unit(rng), unit(rng));
+    const double r = 0.2 + 0.8 * (unit(rng) + 1);
+    const fcl::Transform3<S> X_WD = at(centre, normal).cast<S>();
+    const auto result = fcl_disk::diskShapeDistance(S(r), X_WD, hull, fcl::Transform3<S>::Identity());
+    const double scale = r + 1.8 + centre.norm();
+    const double gap = double(result.certifiedGap());
+    const double points = std::abs((result.p_W_disk - result.p_W_shape).norm() - result.distance);
+    bool ok = gap <= tolerance * scale && points <= tolerance * scale;
+    double reference = -1;
+    if (i < kReferencePoses) {  // the reference takes ~0.1 s a pose on these hulls
+      reference = double(ref::referenceDistance(
+                             ref::makeDisk(double(S(r)), X_WD.linear().template cast<ref::Real>(),
+                                           X_WD.translation().template cast<ref::Real>()),
+                             reference_hull)
+                             .distance);
+      ok = ok && std::abs(double(result.distance) - reference) <= tolerance * scale &&
+           double(result.lower_bound) <= reference + tolerance * scale;
+    }
+    if (!ok) {
+      ++failures;
+      ADD_FAILURE() << name << " pose " << i << ": distance " << double(result.distance)
+                    << " lower bound " << double(result.lower_bound) << " reference " << reference;
+    }
+  }
+}
+
+TEST(DiskShapeCases, LargeConvexHullsMatchReference) {
+  const HullLists rings = ringHull(8, 16, Vector3d(1.2, 0.9, 0.7));
+  const HullLists cube = subdividedCube(4, 0.8);
+  ASSERT_EQ(rings.vertices.size(), 130u);
+  ASSERT_EQ(cube.vertices.size(), 98u);
+  ASSERT_EQ(cube.faces.size(), 192u);
+  checkLargeHull<double>(rings, "ring hull");
+  checkLargeHull<double>(cube, "subdivided cube");
+  checkLargeHull<float>(rings, "ring hull");
+  checkLargeHull<float>(cube, "subdivided cube");
 }
 
 TEST(DiskShapeCases, UncertainShapesGiveCostSourcesAsFcl) {

@@ -1,6 +1,8 @@
-// Disk - fcl::Convex: the generic solver with the polytope's projection (the
-// nearest of the faces whose planes see the point) and support (a vertex).
-// docs/disk_shape_distance.md, section 4.
+// Disk - fcl::Convex: its nearest feature paired with the disk in closed form
+// (ConvexTraits::closedForm), else the generic solver with the polytope's
+// projection (the nearest of the faces whose planes see the point) and support
+// (a vertex); large hulls climb their face graph and keep their vertices in
+// clusters. docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
 #include "polygon_projection.h"
@@ -37,6 +39,21 @@ constexpr double kDotRounding = 4 * std::numeric_limits<double>::epsilon();
 /// The closed form's passes (ConvexTraits::closedForm): each moves to the
 /// hull's feature nearest the disk point of the last feature's pair.
 constexpr int kFeaturePasses = 3;
+
+/// Hulls with at least this many vertices keep them in clusters of at most
+/// kClusterSize, each with a bounding ball, for their extreme values along a
+/// direction (ConvexTarget::mostAlong): a cluster whose ball cannot beat the
+/// best vertex found is skipped. Below, one vectorised scan of every vertex
+/// costs about as much, and the clusters' construction more where hulls
+/// change often (measured in docs/disk_shape_distance.md, section 4).
+constexpr std::size_t kClusteringVertexCount = 64;
+constexpr int kClusterSize = 16;
+
+/// Hulls with at least this many faces find a point's nearest feature by
+/// climbing the face graph first (ConvexTarget::nearestOverFaces): a scan of
+/// every plane costs more than the climb there; below, the graph's
+/// construction costs more than it saves where hulls change often (section 4).
+constexpr std::size_t kClimbingFaceCount = 100;
 
 /// A face of the polytope: where its vertex indices start in FCL's face list,
 /// how many, its outward unit normal (zero for a face of zero area), the
@@ -81,6 +98,22 @@ struct ConvexGeometry {
   /// The vertices in double, one column per coordinate: the support's scan
   /// runs vectorised.
   Eigen::Matrix<double, Eigen::Dynamic, 3> points;
+  /// A group of vertices, rows [begin, end) of clustered_points, inside the
+  /// ball (centre, radius).
+  struct VertexCluster {
+    Vec3 centre;
+    double radius;
+    int begin, end;
+  };
+  /// The vertices by cluster (hulls of kClusteringVertexCount vertices or more).
+  std::vector<VertexCluster> clusters;
+  Eigen::Matrix<double, Eigen::Dynamic, 3> clustered_points;
+  /// Faces sharing an edge, face f's from face_neighbours[neighbour_start[f]]
+  /// to before [neighbour_start[f + 1]] (hulls of kClimbingFaceCount faces or more).
+  std::vector<int> neighbour_start, face_neighbours;
+  /// Faces whose normals are extreme along +-x, +-y, +-z: where a climb on
+  /// the face graph starts, the one whose plane is farthest from the point.
+  std::array<int, 6> climb_starts{};
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
@@ -258,7 +291,99 @@ struct ConvexTarget {
       geometry.planes.row(f) << unit.transpose(), faces.back().offset;
       at += count + 1;
     }
+    if (faces.size() >= kClimbingFaceCount) buildFaceGraph(list, &geometry);
+    if (std::size_t(geometry.points.rows()) >= kClusteringVertexCount) buildClusters(&geometry);
     return geometry;
+  }
+
+  /// ConvexGeometry's vertex clusters: the vertices split at the median of
+  /// their bounding box's longest side until at most kClusterSize remain.
+  static void buildClusters(ConvexGeometry* geometry) {
+    const auto& points = geometry->points;
+    std::vector<int> order(std::size_t(points.rows()));
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = int(i);
+    std::vector<std::array<int, 2>> pending{{0, int(order.size())}};
+    std::vector<std::array<int, 2>> leaves;
+    while (!pending.empty()) {
+      const auto [begin, end] = pending.back();
+      pending.pop_back();
+      if (end - begin <= kClusterSize) {
+        leaves.push_back({begin, end});
+        continue;
+      }
+      Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+      for (int i = begin; i < end; ++i) {
+        low = low.cwiseMin(points.row(order[i]).transpose());
+        high = high.cwiseMax(points.row(order[i]).transpose());
+      }
+      Eigen::Index axis = 0;
+      (high - low).maxCoeff(&axis);
+      const int middle = begin + (end - begin) / 2;
+      std::nth_element(order.begin() + begin, order.begin() + middle, order.begin() + end,
+                       [&](int a, int b) { return points(a, axis) < points(b, axis); });
+      pending.push_back({begin, middle});
+      pending.push_back({middle, end});
+    }
+    geometry->clustered_points.resize(points.rows(), 3);
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      geometry->clustered_points.row(Eigen::Index(i)) = points.row(order[i]);
+    }
+    for (const auto& [begin, end] : leaves) {
+      const auto rows = geometry->clustered_points.middleRows(begin, end - begin);
+      const Vec3 centre = rows.colwise().mean().transpose();
+      double radius = 0.0;
+      for (Eigen::Index i = 0; i < rows.rows(); ++i) {
+        radius = std::max(radius, safeNorm(rows.row(i).transpose() - centre));
+      }
+      geometry->clusters.push_back({centre, radius, begin, end});
+    }
+  }
+
+  /// ConvexGeometry's face graph (faces sharing an edge: the faces' edges
+  /// sorted by their vertex pair, as 64-bit keys) and the climb's start faces.
+  static void buildFaceGraph(const std::vector<int>& list, ConvexGeometry* geometry) {
+    const std::vector<ConvexFace>& faces = geometry->faces;
+    const auto key = [](int high, int low) {
+      return std::uint64_t(std::uint32_t(high)) << 32 | std::uint32_t(low);
+    };
+    std::vector<std::pair<std::uint64_t, int>> edges;  // (smaller, larger vertex), face
+    edges.reserve(geometry->edges.size());
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const int* index = &list[faces[f].start];
+      for (int i = 0; i < faces[f].count; ++i) {
+        const int from = index[i], to = index[i + 1 < faces[f].count ? i + 1 : 0];
+        edges.emplace_back(key(std::min(from, to), std::max(from, to)), int(f));
+      }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::vector<std::uint64_t> pairs;  // (face, neighbour), both ways
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t end = i + 1;
+      while (end < edges.size() && edges[end].first == edges[i].first) ++end;
+      for (std::size_t a = i; a < end; ++a) {
+        for (std::size_t b = i; b < end; ++b) {
+          if (edges[a].second != edges[b].second) pairs.push_back(key(edges[a].second, edges[b].second));
+        }
+      }
+      i = end;
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+    geometry->neighbour_start.assign(faces.size() + 1, 0);
+    geometry->face_neighbours.resize(pairs.size());
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      ++geometry->neighbour_start[(pairs[k] >> 32) + 1];
+      geometry->face_neighbours[k] = int(pairs[k] & 0xffffffffu);
+    }
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      geometry->neighbour_start[f + 1] += geometry->neighbour_start[f];
+    }
+    for (int axis = 0; axis < 6; ++axis) {
+      const double sign = axis < 3 ? 1.0 : -1.0;
+      Eigen::Index extreme = 0;
+      (sign * geometry->planes.col(axis % 3)).maxCoeff(&extreme);
+      geometry->climb_starts[axis] = int(extreme);
+    }
   }
 
   /// The edges of the faces, each once (vertex indices, the smaller first):
@@ -400,11 +525,23 @@ struct ConvexTarget {
   /// (usually the answer: y's foot on it lies inside it), then the others
   /// whose plane distance can still beat the best.
   template <typename OntoFace>
-  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face) const
+  auto nearestOverFaces(const Vec3& y, OntoFace&& onto_face, int start_face = -1) const
       -> std::optional<std::pair<decltype(onto_face(faces[0])), int>> {
+    const std::size_t face_count = faces.size();
+    // A large hull: the face reached by climbing the face graph to a plane
+    // height of y that no neighbour exceeds. Its nearest point is the
+    // polytope's when its plane's distance is reached or no vertex lies
+    // beyond it (the tests below); else every plane is scanned.
+    if (face_count >= kClimbingFaceCount) {
+      const int climbed = climbToHighestPlane(y, start_face);
+      const double height = planeHeight(climbed, y);
+      if (height > 0.0) {
+        auto on_face = onto_face(faces[climbed]);
+        if (isNearestPoint(y, on_face.q, height)) return std::pair(on_face, climbed);
+      }
+    }
     // Every plane's height of y, in one vectorised pass over the plane columns.
     Eigen::VectorXd& heights = geometry.heights;
-    const std::size_t face_count = faces.size();
     heights.noalias() = planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
                         planes.col(3);
     const double* height_of = heights.data();
@@ -414,17 +551,8 @@ struct ConvexTarget {
     const int farthest = int(farthest_index);
     auto best = onto_face(faces[farthest]);
     int best_face = farthest;
+    if (isNearestPoint(y, best.q, farthest_height)) return std::pair(best, best_face);
     double best_distance = (y - best.q).norm();
-    // The farthest plane's distance bounds the polytope's: reached, it is optimal.
-    if (best_distance <= farthest_height) return std::pair(best, best_face);
-    // q is the polytope's point nearest y iff no vertex lies beyond q along
-    // y - q (the optimality condition (y - q).(v - q) <= 0 for every point v of
-    // the hull, checked at its vertices): mostly q is on the farthest face's
-    // boundary and this one support scan settles it, up to the rounding of
-    // the scan's products.
-    const Vec3 away = y - best.q;
-    const double slack = kDotRounding * away.cwiseAbs().sum() * geometry.bounding_radius;
-    if (supportValue(away) <= away.dot(best.q) + slack) return std::pair(best, best_face);
     for (std::size_t f = 0; f < face_count; ++f) {
       if (int(f) == farthest) continue;
       const double height = height_of[f];
@@ -436,6 +564,52 @@ struct ConvexTarget {
       if (distance < best_distance) best = on_face, best_distance = distance, best_face = int(f);
     }
     return std::pair(best, best_face);
+  }
+
+  /// y's height over face f's plane (its signed distance, outwards).
+  double planeHeight(int f, const Vec3& y) const {
+    return planes(f, 0) * y.x() + planes(f, 1) * y.y() + planes(f, 2) * y.z() - planes(f, 3);
+  }
+
+  /// From `start` (or, for -1, the farthest of the climb's start faces), the
+  /// neighbour whose plane is farthest from y while that is farther: a face
+  /// whose plane height of y no neighbour exceeds (usually, not always, the
+  /// farthest plane: nearestOverFaces proves what it finds).
+  int climbToHighestPlane(const Vec3& y, int start) const {
+    int at = start;
+    double height = -std::numeric_limits<double>::infinity();
+    if (at < 0) {
+      for (const int f : geometry.climb_starts) {
+        const double h = planeHeight(f, y);
+        if (h > height) at = f, height = h;
+      }
+    } else {
+      height = planeHeight(at, y);
+    }
+    for (;;) {  // heights increase strictly: no face twice
+      int next = -1;
+      for (int k = geometry.neighbour_start[at]; k < geometry.neighbour_start[at + 1]; ++k) {
+        const int f = geometry.face_neighbours[k];
+        const double h = planeHeight(f, y);
+        if (h > height) next = f, height = h;
+      }
+      if (next < 0) return at;
+      at = next;
+    }
+  }
+
+  /// Whether q, a point of a face whose plane lies `height` below y, is the
+  /// polytope's point nearest y: when |y - q| reaches that plane's distance
+  /// (every face plane bounds the polytope's distance from below), or when
+  /// no vertex lies beyond q along y - q (the optimality condition
+  /// (y - q).(v - q) <= 0 for every point v of the hull, checked at its
+  /// vertices), up to the rounding of the scan's products: mostly q is on
+  /// the face's boundary and this one support scan settles it.
+  bool isNearestPoint(const Vec3& y, const Vec3& q, double height) const {
+    if ((y - q).norm() <= height) return true;
+    const Vec3 away = y - q;
+    const double slack = kDotRounding * away.cwiseAbs().sum() * geometry.bounding_radius;
+    return supportValue(away) <= away.dot(q) + slack;
   }
 
   /// The polytope's nearest point to y, with psi's Hessian (nearestOverFaces
@@ -463,8 +637,10 @@ struct ConvexTarget {
 
   /// The polytope's nearest feature to y (nearestOverFaces with
   /// nearestOnFace), nullopt when y lies inside every face plane.
-  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y) const {
-    return nearestOverFaces(y, [&](const ConvexFace& face) { return nearestOnFace(y, face); });
+  std::optional<std::pair<NearestOnFace, int>> nearestFeature(const Vec3& y,
+                                                              int start_face = -1) const {
+    return nearestOverFaces(
+        y, [&](const ConvexFace& face) { return nearestOnFace(y, face); }, start_face);
   }
 
   /// w.v for every vertex v, in one vectorised pass (this thread's buffer,
@@ -482,7 +658,38 @@ struct ConvexTarget {
   double supportMismatch() const { return face_thickness; }
 
   /// max over the vertices of w.v.
-  double supportValue(const Vec3& w) const { return alongVertices(w).maxCoeff(); }
+  double supportValue(const Vec3& w) const { return mostAlong(w); }
+
+  /// max over the vertices of w.v, as alongVertices(w).maxCoeff() gives it
+  /// (the same products, so the same value): by clusters where the hull has
+  /// them, the cluster whose ball reaches farthest along w first, then every
+  /// other whose ball could still hold a vertex beyond the best found. The
+  /// balls' bounds w.c + |w| r are compared with that best less twice the
+  /// rounding of either (kDotRounding |w|_1 B each): a skipped vertex's w.v
+  /// cannot exceed it.
+  double mostAlong(const Vec3& w) const {
+    const auto& clusters = geometry.clusters;
+    if (clusters.empty()) return alongVertices(w).maxCoeff();
+    const double w_length = w.norm();
+    const double slack = 2.0 * kDotRounding * w.cwiseAbs().sum() * geometry.bounding_radius;
+    std::size_t first = 0;
+    double first_bound = -std::numeric_limits<double>::infinity();
+    for (std::size_t g = 0; g < clusters.size(); ++g) {
+      const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
+      if (bound > first_bound) first = g, first_bound = bound;
+    }
+    const auto most_in = [&](const typename ConvexGeometry::VertexCluster& cluster) {
+      const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
+      return (rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z()).maxCoeff();
+    };
+    double best = most_in(clusters[first]);
+    for (std::size_t g = 0; g < clusters.size(); ++g) {
+      if (g == first) continue;
+      const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
+      if (bound + slack > best) best = std::max(best, most_in(clusters[g]));
+    }
+    return best;
+  }
 
   Vec3 support(const Vec3& w) const {
     Eigen::Index best = 0;  // ties take the first vertex
@@ -544,16 +751,18 @@ struct ConvexTraits {
     const ConvexTarget<S> hull = target(convex);
     const LeafToDisk not_settled;
     if (hull.flat) return not_settled;
-    const auto least_along = [&](const Vec3& w) { return hull.alongVertices(w).minCoeff(); };
+    const auto least_along = [&](const Vec3& w) { return -hull.mostAlong(-w); };
     const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_hull) {
       return certifiedAlongItself(disk, least_along, upper, p_disk, p_hull, scale,
                                   hull.supportMismatch());
     };
     Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
+    int last_face = -1;  // where the next pass's climb starts
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
-      const auto at = hull.nearestFeature(p);
+      const auto at = hull.nearestFeature(p, last_face);
       if (!at) return meetingAt(p);
       const auto& [nearest, face_index] = *at;
+      last_face = face_index;
       const ConvexFace& face = hull.faces[face_index];
       // The pair of a vertex or an edge of `face` with the disk, certified, and
       // its disk point as the next pass's start; a common point where the
