@@ -832,7 +832,8 @@ HullLists subdividedCube(int n, double h) {
 // certificate closes, and on the first 25 the distance and the lower bound
 // agree with the independent long-double reference.
 template <typename S>
-void checkLargeHull(const HullLists& lists, const char* name) {
+void checkLargeHull(const HullLists& lists, const char* name, int reference_poses = 25,
+                    const Vector3d& hull_position = Vector3d::Zero()) {
   namespace ref = fcl_disk_test::ref;
   auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
   for (const Vector3d& v : lists.vertices) vertices->push_back(v.cast<S>());
@@ -846,25 +847,29 @@ void checkLargeHull(const HullLists& lists, const char* name) {
   for (const auto& v : *vertices) reference_hull.vertices.push_back(v.template cast<ref::Real>());
   reference_hull.faces = lists.faces;
   const double tolerance = std::is_same<S, float>::value ? 8 * 1.2e-7 : kExact;
-  constexpr int kReferencePoses = 25;
   std::mt19937_64 rng(31);
+  const fcl::Transform3<S> X_WS = at(hull_position, Vector3d(1, 2, 3)).cast<S>();
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   int failures = 0;
   for (int i = 0; i < 500 && failures < 5; ++i) {
-    const Vector3d centre = 2.5 * Vector3d(unit(rng), unit(rng), unit(rng));
+    const Vector3d centre = hull_position + 2.5 * Vector3d(unit(rng), unit(rng), unit(rng));
     const Vector3d normal(unit(rng), unit(rng), unit(rng));
     const double r = 0.2 + 0.8 * (unit(rng) + 1);
     const fcl::Transform3<S> X_WD = at(centre, normal).cast<S>();
-    const auto result = fcl_disk::diskShapeDistance(S(r), X_WD, hull, fcl::Transform3<S>::Identity());
-    const double scale = r + 1.8 + centre.norm();
+    const auto result = fcl_disk::diskShapeDistance(S(r), X_WD, hull, X_WS);
+    double hull_radius = 0;
+    for (const Vector3d& v : lists.vertices) hull_radius = std::max(hull_radius, v.norm());
+    const double scale = r + hull_radius + (centre - hull_position).norm();
     const double gap = double(result.certifiedGap());
     const double points = std::abs((result.p_W_disk - result.p_W_shape).norm() - result.distance);
     bool ok = gap <= tolerance * scale && points <= tolerance * scale;
     double reference = -1;
-    if (i < kReferencePoses) {  // the reference takes ~0.1 s a pose on these hulls
+    if (i < reference_poses) {  // the reference takes ~0.1 s a pose on these hulls
+      // The disk in the hull's frame, as the reference takes the hull at the origin.
+      const fcl::Transform3<S> X_SD = X_WS.inverse() * X_WD;
       reference = double(ref::referenceDistance(
-                             ref::makeDisk(double(S(r)), X_WD.linear().template cast<ref::Real>(),
-                                           X_WD.translation().template cast<ref::Real>()),
+                             ref::makeDisk(double(S(r)), X_SD.linear().template cast<ref::Real>(),
+                                           X_SD.translation().template cast<ref::Real>()),
                              reference_hull)
                              .distance);
       ok = ok && std::abs(double(result.distance) - reference) <= tolerance * scale &&
@@ -888,6 +893,21 @@ TEST(DiskShapeCases, LargeConvexHullsMatchReference) {
   checkLargeHull<double>(cube, "subdivided cube");
   checkLargeHull<float>(rings, "ring hull");
   checkLargeHull<float>(cube, "subdivided cube");
+}
+
+// Large hulls at their edge cases, 500 poses each (the first 5 against the
+// reference): nearly flat (a ring hull 2e-9 thick: 144 faces within 1e-9 of
+// two planes), a needle (576 faces, semi-axes 3, 0.2, 0.2), vertices listed
+// twice (the copies in no face, as FCL allows), and a hull 1e4 from the origin.
+TEST(DiskShapeCases, DegenerateLargeHullsStayCertified) {
+  checkLargeHull<double>(ringHull(8, 16, Vector3d(1.0, 0.8, 1e-9)), "nearly flat ring hull", 5);
+  checkLargeHull<double>(ringHull(8, 64, Vector3d(3.0, 0.2, 0.2)), "needle ring hull", 5);
+  HullLists doubled = ringHull(8, 16, Vector3d(1.2, 0.9, 0.7));
+  const std::vector<Vector3d> copies = doubled.vertices;
+  doubled.vertices.insert(doubled.vertices.end(), copies.begin(), copies.end());
+  checkLargeHull<double>(doubled, "ring hull with its vertices twice", 5);
+  checkLargeHull<double>(ringHull(8, 16, Vector3d(1.2, 0.9, 0.7)), "ring hull far away", 5,
+                         Vector3d(1e4, -2e4, 5e3));
 }
 
 TEST(DiskShapeCases, UncertainShapesGiveCostSourcesAsFcl) {
