@@ -576,15 +576,13 @@ struct ConvexTarget {
   /// whose plane height of y no neighbour exceeds (usually, not always, the
   /// farthest plane: nearestOverFaces proves what it finds).
   int climbToHighestPlane(const Vec3& y, int start) const {
-    int at = start;
-    double height = -std::numeric_limits<double>::infinity();
-    if (at < 0) {
+    int at = start < 0 ? geometry.climb_starts[0] : start;
+    double height = planeHeight(at, y);
+    if (start < 0) {
       for (const int f : geometry.climb_starts) {
         const double h = planeHeight(f, y);
         if (h > height) at = f, height = h;
       }
-    } else {
-      height = planeHeight(at, y);
     }
     for (;;) {  // heights increase strictly: no face twice
       int next = -1;
