@@ -176,13 +176,9 @@ inline bool runQuery(const Pool<S>& p, const Query& q, std::size_t k, S* distanc
   return d <= kOverlapTolerance<S>;
 }
 
+/// The benchmark loop: query q on the pool's cases in turn, one a iteration.
 template <typename S>
-void benchQuery(benchmark::State& state, Query q, std::string skip_reason) {
-  if (!skip_reason.empty()) {
-    state.SkipWithError(skip_reason.c_str());
-    return;
-  }
-  const Pool<S>& p = pool<S>(q.kind);
+void cycleThroughPool(benchmark::State& state, const Pool<S>& p, const Query& q) {
   std::size_t i = 0;
   std::int64_t overlaps = 0;
   for (auto _ : state) {
@@ -193,6 +189,15 @@ void benchQuery(benchmark::State& state, Query q, std::string skip_reason) {
   state.counters["pool"] = kPoolSize;
   state.counters["overlap"] =
       double(overlaps) / double(std::max<std::int64_t>(1, state.iterations()));
+}
+
+template <typename S>
+void benchQuery(benchmark::State& state, Query q, std::string skip_reason) {
+  if (!skip_reason.empty()) {
+    state.SkipWithError(skip_reason.c_str());
+    return;
+  }
+  cycleThroughPool<S>(state, pool<S>(q.kind), q);
 }
 
 /// diskShapeDistance on the pool's cases, the shape as its own type.
@@ -305,16 +310,7 @@ const Pool<double>& hullPool(int vertex_count) {
 }
 
 void benchHull(benchmark::State& state, int vertex_count, Query q) {
-  const Pool<double>& p = hullPool(vertex_count);
-  std::size_t i = 0;
-  std::int64_t overlaps = 0;
-  for (auto _ : state) {
-    overlaps += runQuery<double>(p, q, i++ & (kPoolSize - 1), nullptr);
-    benchmark::ClobberMemory();
-  }
-  state.SetItemsProcessed(state.iterations());
-  state.counters["overlap"] =
-      double(overlaps) / double(std::max<std::int64_t>(1, state.iterations()));
+  cycleThroughPool<double>(state, hullPool(vertex_count), q);
 }
 
 void registerHulls() {
