@@ -829,10 +829,10 @@ HullLists subdividedCube(int n, double h) {
 // (ConvexTarget::climbToHighestPlane, mostAlong): a strictly convex ring hull
 // (130 vertices, 144 faces) and a subdivided cube (98 vertices, 192 coplanar
 // triangles), 500 random disk poses each, in double and float: every
-// certificate closes, and on the first 25 the distance and the lower bound
+// certificate closes, and on the first 15 the distance and the lower bound
 // agree with the independent long-double reference.
 template <typename S>
-void checkLargeHull(const HullLists& lists, const char* name, int reference_poses = 25,
+void checkLargeHull(const HullLists& lists, const char* name, int reference_poses = 15,
                     const Vector3d& hull_position = Vector3d::Zero()) {
   namespace ref = fcl_disk_test::ref;
   auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
