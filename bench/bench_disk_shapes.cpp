@@ -289,11 +289,8 @@ const Pool<double>& hullPool(int vertex_count) {
                   std::begin(kHullSizes));
   if (!pools[slot]) {
     fcl_disk_test::Random random(kSeed + std::uint64_t(vertex_count));
-    dsc::ShapeSpec spec;
-    spec.kind = ShapeKind::convex40;
-    for (int v = 0; v < vertex_count; ++v) spec.vertices.push_back(0.45 * random.unitVector());
-    dsc::detail::bruteForceHull(spec.vertices, &spec.faces, &spec.num_faces);
-    const std::shared_ptr<fcl::ShapeBase<double>> hull = dsc::makeShape<double>(spec);
+    const std::shared_ptr<fcl::ShapeBase<double>> hull =
+        dsc::makeShape<double>(dsc::detail::sphereHull(vertex_count, random));
     auto pool = std::make_unique<Pool<double>>();
     for (std::size_t k = 0; k < kPoolSize; ++k) {
       const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);

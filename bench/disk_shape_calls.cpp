@@ -89,11 +89,7 @@ double sumOfDistances(const dsc::ShapeKind& kind, int passes) {
 /// first query.
 double sumOfHullDistances(int vertex_count, int passes) {
   fcl_disk_test::Random random(kSeed + std::uint64_t(vertex_count));
-  dsc::ShapeSpec spec;
-  spec.kind = dsc::ShapeKind::convex40;
-  for (int v = 0; v < vertex_count; ++v) spec.vertices.push_back(0.45 * random.unitVector());
-  dsc::detail::bruteForceHull(spec.vertices, &spec.faces, &spec.num_faces);
-  const auto hull = dsc::makeShape<double>(spec);
+  const auto hull = dsc::makeShape<double>(dsc::detail::sphereHull(vertex_count, random));
   std::vector<std::pair<fcl::Transform3<double>, fcl::Transform3<double>>> poses;
   for (int k = 0; k < kCases; ++k) {
     const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);

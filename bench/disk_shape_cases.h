@@ -176,6 +176,16 @@ inline void bruteForceHull(const std::vector<Eigen::Vector3d>& p, std::vector<in
 
 inline double factor(fcl_disk_test::Random& random) { return random.uniform(0.7, 1.3); }
 
+/// The Convex hull of `vertex_count` random points on the sphere of radius 0.45
+/// (convex40's shape; the hull-size benchmarks' for other counts).
+inline ShapeSpec sphereHull(int vertex_count, fcl_disk_test::Random& random) {
+  ShapeSpec s;
+  s.kind = ShapeKind::convex40;
+  for (int v = 0; v < vertex_count; ++v) s.vertices.push_back(0.45 * random.unitVector());
+  bruteForceHull(s.vertices, &s.faces, &s.num_faces);
+  return s;
+}
+
 inline ShapeSpec randomShape(ShapeKind kind, fcl_disk_test::Random& random) {
   ShapeSpec s;
   s.kind = kind;
@@ -217,8 +227,7 @@ inline ShapeSpec randomShape(ShapeKind kind, fcl_disk_test::Random& random) {
       break;
     }
     case ShapeKind::convex40:
-      for (int v = 0; v < 40; ++v) s.vertices.push_back(0.45 * random.unitVector());
-      bruteForceHull(s.vertices, &s.faces, &s.num_faces);
+      s = sphereHull(40, random);
       break;
     case ShapeKind::halfspace:
     case ShapeKind::plane:
