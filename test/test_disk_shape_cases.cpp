@@ -847,6 +847,8 @@ void checkLargeHull(const HullLists& lists, const char* name, int reference_pose
   for (const auto& v : *vertices) reference_hull.vertices.push_back(v.template cast<ref::Real>());
   reference_hull.faces = lists.faces;
   const double tolerance = std::is_same<S, float>::value ? 8 * 1.2e-7 : kExact;
+  double hull_radius = 0;
+  for (const Vector3d& v : lists.vertices) hull_radius = std::max(hull_radius, v.norm());
   std::mt19937_64 rng(31);
   const fcl::Transform3<S> X_WS = at(hull_position, Vector3d(1, 2, 3)).cast<S>();
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -857,8 +859,6 @@ void checkLargeHull(const HullLists& lists, const char* name, int reference_pose
     const double r = 0.2 + 0.8 * (unit(rng) + 1);
     const fcl::Transform3<S> X_WD = at(centre, normal).cast<S>();
     const auto result = fcl_disk::diskShapeDistance(S(r), X_WD, hull, X_WS);
-    double hull_radius = 0;
-    for (const Vector3d& v : lists.vertices) hull_radius = std::max(hull_radius, v.norm());
     const double scale = r + hull_radius + (centre - hull_position).norm();
     const double gap = double(result.certifiedGap());
     const double points = std::abs((result.p_W_disk - result.p_W_shape).norm() - result.distance);

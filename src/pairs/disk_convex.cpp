@@ -604,8 +604,8 @@ struct ConvexTarget {
   /// vertices), up to the rounding of the scan's products: mostly q is on
   /// the face's boundary and this one support scan settles it.
   bool isNearestPoint(const Vec3& y, const Vec3& q, double height) const {
-    if ((y - q).norm() <= height) return true;
     const Vec3 away = y - q;
+    if (away.norm() <= height) return true;
     const double slack = kDotRounding * away.cwiseAbs().sum() * geometry.bounding_radius;
     return supportValue(away) <= away.dot(q) + slack;
   }

@@ -67,8 +67,9 @@ struct EllipsoidTarget {
     // Start: y - q = t A q (A = diag(1 / e_i^2)); with q estimated by the radial
     // point y / sqrt(L) (L = levelOnAxes(y)) and |y - q| by (1 - 1/sqrt(L)) |y|,
     // t ~ (sqrt(L) - 1) |y| / |A y| (exact for a sphere). On the report's
-    // ellipsoid cases it is within 3% of the root in the median, and it needs
-    // 3.1 evaluations of phi (from lo, 5.1). Out of the bracket, or not finite
+    // ellipsoid cases it is within 3% of the root in the median, and a
+    // projection takes 3.1 evaluations of phi (docs/disk_shape_distance.md,
+    // section 4). Out of the bracket, or not finite
     // (A y overflows for semi-axes near kFlatSemiAxis), the bracket's end.
     const Vec3 a_y = y_on_axes.cwiseQuotient(e2.cwiseMax(std::numeric_limits<double>::min()));
     const double radial = (std::sqrt(level) - 1.0) * y_on_axes.norm() / a_y.norm();
