@@ -46,6 +46,11 @@
 // random poses: the same hull queried again and again, as a planner does.
 // Variants distance_disk_libccd and distance_flat_cylinder_<libccd|indep>.
 //
+// Hulls in turn: disk_hulls_in_turn/<H>/<variant>/double, H Convex hulls of
+// 40 random points on the sphere of radius 0.45, the pool's case k against
+// hull k % H: a scene's hulls queried one after another, as a broadphase
+// visits them (each thread keeps the geometry of 32 hulls).
+//
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_shapes --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
 //   bench_disk_shapes --benchmark_filter='disk_shapes/box/'
@@ -310,7 +315,48 @@ void benchHull(benchmark::State& state, int vertex_count, Query q) {
   cycleThroughPool<double>(state, hullPool(vertex_count), q);
 }
 
+/// The hull counts of the disk_hulls_in_turn benchmarks.
+constexpr int kHullCounts[] = {1, 8, 32, 48, 64};
+
+/// kPoolSize cases against `hull_count` Convex hulls of 40 random points on a
+/// sphere, case k against hull k % hull_count: the hulls queried in turn.
+const Pool<double>& inTurnPool(int hull_count) {
+  static std::vector<std::unique_ptr<Pool<double>>> pools(std::size(kHullCounts));
+  const std::size_t slot =
+      std::size_t(std::find(std::begin(kHullCounts), std::end(kHullCounts), hull_count) -
+                  std::begin(kHullCounts));
+  if (!pools[slot]) {
+    fcl_disk_test::Random random(kSeed + 7919 * std::uint64_t(hull_count));
+    std::vector<std::shared_ptr<fcl::ShapeBase<double>>> hulls;
+    for (int h = 0; h < hull_count; ++h) {
+      hulls.push_back(dsc::makeShape<double>(dsc::detail::sphereHull(40, random)));
+    }
+    auto pool = std::make_unique<Pool<double>>();
+    for (std::size_t k = 0; k < kPoolSize; ++k) {
+      const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
+      pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
+      pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
+      pool->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          hulls[k % std::size_t(hull_count)], dsc::detail::randomPose(random)));
+    }
+    pools[slot] = std::move(pool);
+  }
+  return *pools[slot];
+}
+
 void registerHulls() {
+  for (const int hull_count : kHullCounts) {
+    for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
+                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {
+      const std::string name = "disk_hulls_in_turn/" + std::to_string(hull_count) + "/" +
+                               variantName(q) + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [hull_count, q](benchmark::State& st) {
+        cycleThroughPool<double>(st, inTurnPool(hull_count), q);
+      });
+    }
+  }
   for (const int vertex_count : kHullSizes) {
     for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
                            Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD},

@@ -910,6 +910,76 @@ TEST(DiskShapeCases, DegenerateLargeHullsStayCertified) {
                          Vector3d(1e4, -2e4, 5e3));
 }
 
+/// An fcl::Convex of `lists`, its vertex list shared with the caller through
+/// *vertices (FCL keeps the pointer: changing the list changes the hull).
+std::shared_ptr<fcl::Convexd> convexOf(const HullLists& lists,
+                                       std::shared_ptr<std::vector<Vector3d>>* vertices) {
+  *vertices = std::make_shared<std::vector<Vector3d>>(lists.vertices);
+  auto face_list = std::make_shared<std::vector<int>>();
+  for (const auto& face : lists.faces) {
+    face_list->push_back(int(face.size()));
+    face_list->insert(face_list->end(), face.begin(), face.end());
+  }
+  return std::make_shared<fcl::Convexd>(*vertices, int(lists.faces.size()), face_list);
+}
+
+// Each thread keeps the geometry of the hulls it queries (ConvexGeometryCache):
+// queried in turn, 80 hulls (more than the cache holds; small and large ones)
+// give bit for bit the answers each gives queried alone, and a hull whose
+// shared vertex list is changed in place, at the same address, answers for
+// its new vertices.
+TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
+  constexpr int kHulls = 80, kPoses = 12;
+  std::vector<std::shared_ptr<fcl::Convexd>> hulls;
+  std::vector<std::shared_ptr<std::vector<Vector3d>>> vertex_lists(kHulls);
+  for (int h = 0; h < kHulls; ++h) {
+    const double size = 0.5 + 0.01 * h;
+    const int per_ring = h % 4 == 0 ? 16 : 5 + h % 7;  // 130 vertices, or 32..82
+    hulls.push_back(convexOf(ringHull(h % 4 == 0 ? 8 : 6, per_ring,
+                                      Vector3d(size, 0.8 * size, 0.6 * size)),
+                             &vertex_lists[h]));
+  }
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::vector<Transform3d> disk_poses;
+  for (int i = 0; i < kPoses; ++i) {
+    disk_poses.push_back(at(1.5 * Vector3d(unit(rng), unit(rng), unit(rng)),
+                            Vector3d(unit(rng), unit(rng), unit(rng))));
+  }
+  const Transform3d X_WS = at(Vector3d(0.1, -0.2, 0.3), Vector3d(1, 2, 3));
+  const auto query = [&](const fcl::Convexd& hull, int pose) {
+    return fcl_disk::diskShapeDistance(0.4, disk_poses[pose], hull, X_WS);
+  };
+  std::vector<fcl_disk::DiskShapeDistanceResult<double>> alone;
+  for (int h = 0; h < kHulls; ++h) {
+    for (int pose = 0; pose < kPoses; ++pose) alone.push_back(query(*hulls[h], pose));
+  }
+  for (int round = 0; round < 3; ++round) {
+    for (int pose = 0; pose < kPoses; ++pose) {
+      for (int h = 0; h < kHulls; ++h) {
+        const auto in_turn = query(*hulls[h], pose);
+        const auto& expected = alone[std::size_t(h * kPoses + pose)];
+        ASSERT_EQ(in_turn.distance, expected.distance) << "hull " << h << " pose " << pose;
+        ASSERT_EQ(in_turn.lower_bound, expected.lower_bound) << "hull " << h << " pose " << pose;
+        ASSERT_EQ(in_turn.p_W_shape, expected.p_W_shape) << "hull " << h << " pose " << pose;
+      }
+    }
+  }
+  // Hull 0, just queried, moved in place by 0.25 along x: as a new hull built
+  // at the moved vertices.
+  query(*hulls[0], 0);
+  for (Vector3d& v : *vertex_lists[0]) v.x() += 0.25;
+  std::shared_ptr<std::vector<Vector3d>> unused;
+  HullLists moved = ringHull(8, 16, Vector3d(0.5, 0.4, 0.3));
+  for (Vector3d& v : moved.vertices) v.x() += 0.25;
+  const auto fresh = convexOf(moved, &unused);
+  for (int pose = 0; pose < kPoses; ++pose) {
+    const auto changed = query(*hulls[0], pose);
+    EXPECT_EQ(changed.distance, query(*fresh, pose).distance) << "pose " << pose;
+    EXPECT_EQ(changed.p_W_shape, query(*fresh, pose).p_W_shape) << "pose " << pose;
+  }
+}
+
 TEST(DiskShapeCases, UncertainShapesGiveCostSourcesAsFcl) {
   // FCL (ShapeCollisionTraversalNode::leafTesting): occupied shapes give contacts
   // (and cost sources when asked); shapes that are neither occupied nor free

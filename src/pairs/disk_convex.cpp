@@ -128,18 +128,36 @@ struct ConvexGeometry {
   double face_thickness = 0.0;
 };
 
-/// The geometry of the Convex queried last on this thread, with a copy of the
-/// lists it was computed from: a planner queries the same hull many times in a
-/// row, and computing the planes costs more than the query's projections
-/// (76 faces: ~14k instructions). A hit needs the lists equal bit for bit,
-/// so a hull destroyed and another built at the same address is recomputed.
+/// How many hulls each thread keeps the geometry of (ConvexGeometryCache): a
+/// planner's scene holds several hulls and queries them in turn (a broadphase
+/// visits the hulls near a disk, in the same order on every query), and a hull
+/// whose geometry was dropped costs far more than its query (76 faces: ~95k
+/// instructions against ~3k; docs/disk_shape_distance.md, section 4). 32
+/// hulls of the ~100 vertices of a typical link's hull hold ~5 MB a thread.
+constexpr std::size_t kCachedHullCount = 32;
+
+/// The geometry of up to kCachedHullCount hulls this thread queried, each with
+/// a copy of the lists it was computed from. A hit needs the address and the
+/// lists equal bit for bit, so a hull destroyed and another built at the same
+/// address, or one whose shared lists were changed in place, is recomputed.
+/// A new hull takes a free slot, else a pseudo-random one: hulls queried in
+/// turn, more of them than slots, then still mostly hit, where replacing the
+/// least recently used would miss on every query.
 template <typename S>
 struct ConvexGeometryCache {
-  std::vector<fcl::Vector3<S>> vertices;
-  std::vector<int> face_list;
-  int face_count = -1;
-  ConvexGeometry geometry;
-  const void* verified = nullptr;  ///< the hull whose lists geometryOf() compared last
+  struct Entry {
+    const void* shape = nullptr;  ///< the hull's address, never dereferenced
+    std::vector<fcl::Vector3<S>> vertices;
+    std::vector<int> face_list;
+    int face_count = -1;
+    ConvexGeometry geometry;
+  };
+  /// Fixed slots: the geometry a query holds stays where it is while another
+  /// slot is filled.
+  std::array<Entry, kCachedHullCount> entries;
+  std::size_t filled = 0;              ///< slots in use, the first ones
+  std::uint64_t replacements = 0;      ///< drives the choice of the slot replaced
+  const Entry* verified = nullptr;     ///< the entry geometryOf() compared last
 };
 
 /// FCL's Convex: vertices, and faces encoded [k, i_1..i_k, k', ...], each listed
@@ -186,24 +204,38 @@ struct ConvexTarget {
            (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
   }
 
-  /// This thread's geometry of `shape`, from the cache when its lists are
-  /// unchanged (compared bit for bit, sameBytes); `shape` is then the cache's
-  /// verified hull.
+  /// This thread's geometry of `shape`: its cache entry's when the lists are
+  /// unchanged (compared bit for bit, sameBytes), else computed into its
+  /// entry or the least recently used one; that entry is then the verified one.
   static const ConvexGeometry& geometryOf(const fcl::Convex<S>& shape) {
     ConvexGeometryCache<S>& cached = cache();
+    using Entry = typename ConvexGeometryCache<S>::Entry;
+    Entry* entry = nullptr;
+    for (std::size_t slot = 0; slot < cached.filled && !entry; ++slot) {
+      if (cached.entries[slot].shape == &shape) entry = &cached.entries[slot];
+    }
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
-    if (!(cached.face_count == shape.getFaceCount() && sameBytes(cached.vertices, vertices) &&
-          sameBytes(cached.face_list, face_list))) {
-      cached.face_count = -1;  // invalid while rebuilt
+    if (!(entry && entry->face_count == shape.getFaceCount() &&
+          sameBytes(entry->vertices, vertices) && sameBytes(entry->face_list, face_list))) {
+      if (!entry && cached.filled < kCachedHullCount) entry = &cached.entries[cached.filled++];
+      if (!entry) {
+        // splitmix64's finaliser of a counter: a fixed sequence of slots.
+        std::uint64_t z = (++cached.replacements) * 0x9E3779B97F4A7C15ull;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+        entry = &cached.entries[(z ^ (z >> 31)) % kCachedHullCount];
+      }
+      entry->shape = nullptr;  // invalid while rebuilt
       cached.verified = nullptr;
-      cached.vertices = vertices;
-      cached.face_list = face_list;
-      cached.geometry = computeGeometry(shape);
-      cached.face_count = shape.getFaceCount();
+      entry->vertices = vertices;
+      entry->face_list = face_list;
+      entry->geometry = computeGeometry(shape);
+      entry->face_count = shape.getFaceCount();
+      entry->shape = &shape;
     }
-    cached.verified = &shape;
-    return cached.geometry;
+    cached.verified = entry;
+    return entry->geometry;
   }
 
   /// The geometry of the hull geometryOf() verified last on this thread, when
@@ -211,7 +243,8 @@ struct ConvexTarget {
   /// boundingRadius and target) the lists are compared once.
   static const ConvexGeometry& verifiedGeometryOf(const fcl::Convex<S>& shape) {
     const ConvexGeometryCache<S>& cached = cache();
-    return cached.verified == &shape ? cached.geometry : geometryOf(shape);
+    return cached.verified && cached.verified->shape == &shape ? cached.verified->geometry
+                                                               : geometryOf(shape);
   }
 
   /// |v| without overflow or underflow: the plain square root where the
@@ -241,6 +274,7 @@ struct ConvexTarget {
     int& largest_face = geometry.largest_face;
     bool& flat = geometry.flat;
     faces.reserve(shape.getFaceCount());
+    geometry.edges.reserve(list.size() - std::size_t(shape.getFaceCount()));  // one per index
     geometry.triangles.resize(shape.getFaceCount());
     geometry.planes.resize(shape.getFaceCount(), 4);
     std::size_t at = 0;

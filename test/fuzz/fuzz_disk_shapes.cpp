@@ -1,7 +1,9 @@
 // libFuzzer target: fcl_disk::diskShapeDistance / diskShapeIntersect for a disk
 // against every FCL primitive, double and float.
 //
-// The first byte picks the shape (ten kinds), the second the mode:
+// The first byte picks the shape (ten kinds), the second the mode (its value
+// mod 3), float (bit 0x80) and, for Convex, a large hull (bit 0x40,
+// makeLargeHull) instead of an 8-vertex frustum:
 // * raw: radius, dimensions and poses straight from IEEE bit patterns (NaN, inf,
 //   negative, huge, denormal, non-orthonormal): input describing no pair must
 //   give NaN distance, lower_bound and points and no contact; a valid pair must
@@ -60,7 +62,40 @@ constexpr double kFuzzGapRelative = 1e-9;
   std::abort();
 }
 
-Shape makeShape(Kind kind, ByteReader& in, bool raw) {
+/// A large hull for the Convex pair's paths of many faces and vertices
+/// (src/pairs/disk_convex.cpp: the face graph's climb from 100 faces, the
+/// vertex clusters from 64 vertices): a prism over an ellipse's inscribed
+/// N-gon, N = 32..63 (64..126 vertices), its top ring scaled by `taper`
+/// (0: all top vertices one point), its sides quadrilaterals or, with the
+/// byte's low bit, pairs of coplanar triangles (N + 2 or 2 N + 2 faces: the
+/// climb from N = 49 on). Sizes stop there: the oracle's long-double distances
+/// grow with the faces, and the target's other shapes share its time.
+void makeLargeHull(ByteReader& in, Real a, Real b, Real h, Real taper, Shape* s) {
+  const std::uint8_t shape_byte = in.byte();
+  const int n = 32 + (shape_byte >> 1) % 32;
+  const bool triangulated = shape_byte & 1;
+  for (const Real z : {-h, h}) {
+    const Real ring = z < 0 ? Real(1) : taper;
+    for (int k = 0; k < n; ++k) {
+      const Real angle = 2 * Real(3.14159265358979323846) * k / n;
+      s->vertices.emplace_back(ring * a * std::cos(angle), ring * b * std::sin(angle), z);
+    }
+  }
+  std::vector<int> bottom, top;  // counter-clockwise seen from outside
+  for (int k = 0; k < n; ++k) bottom.push_back(n - 1 - k), top.push_back(n + k);
+  s->faces = {bottom, top};
+  for (int k = 0; k < n; ++k) {
+    const int next = (k + 1) % n;
+    if (triangulated) {
+      s->faces.push_back({k, next, n + next});
+      s->faces.push_back({k, n + next, n + k});
+    } else {
+      s->faces.push_back({k, next, n + next, n + k});
+    }
+  }
+}
+
+Shape makeShape(Kind kind, ByteReader& in, bool raw, bool large_hull) {
   Shape s;
   s.kind = kind;
   auto length = [&] { return raw ? Real(in.raw<double>()) : Real(0.02 + in.fraction()); };
@@ -75,6 +110,10 @@ Shape makeShape(Kind kind, ByteReader& in, bool raw) {
       // Fractions even in raw mode: FCL's own Convex constructor is not the target.
       const Real a = Real(0.02 + in.fraction()), b = Real(0.02 + in.fraction()),
                  h = Real(0.02 + in.fraction()), t = Real(in.fraction());
+      if (large_hull) {
+        makeLargeHull(in, a, b, h, t, &s);
+        break;
+      }
       s.vertices = {V3(-a, -b, -h), V3(a, -b, -h), V3(a, b, -h), V3(-a, b, -h),
                     V3(-a * t, -b * t, h), V3(a * t, -b * t, h), V3(a * t, b * t, h), V3(-a * t, b * t, h)};
       s.faces = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
@@ -269,9 +308,9 @@ void check(const Shape& wanted, S r, const fcl::Transform3<S>& X_WD, const fcl::
 }
 
 template <typename S>
-void run(ByteReader& in, Kind kind, int mode) {
+void run(ByteReader& in, Kind kind, int mode, bool large_hull) {
   const bool raw = mode == 0;
-  Shape shape = makeShape(kind, in, raw);
+  Shape shape = makeShape(kind, in, raw, large_hull);
   fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = fcl::Transform3<S>::Identity();
   S r;
   Real truth = -1;
@@ -323,10 +362,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const Kind kind = Kind(in.byte() % 10);
   const std::uint8_t mode_byte = in.byte();
   const int mode = mode_byte % 3;
+  const bool large_hull = mode_byte & 0x40;  // Convex only
   if (mode_byte & 0x80) {
-    run<float>(in, kind, mode);
+    run<float>(in, kind, mode, large_hull);
   } else {
-    run<double>(in, kind, mode);
+    run<double>(in, kind, mode, large_hull);
   }
   return 0;
 }
