@@ -924,12 +924,12 @@ std::shared_ptr<fcl::Convexd> convexOf(const HullLists& lists,
 }
 
 // Each thread keeps the geometry of the hulls it queries (ConvexGeometryCache):
-// queried in turn, 80 hulls (more than the cache holds; small and large ones)
+// queried in turn, 100 hulls (more than the cache holds; small and large ones)
 // give bit for bit the answers each gives queried alone, and a hull whose
 // shared vertex list is changed in place, at the same address, answers for
 // its new vertices.
 TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
-  constexpr int kHulls = 80, kPoses = 12;
+  constexpr int kHulls = 100, kPoses = 12;
   std::vector<std::shared_ptr<fcl::Convexd>> hulls;
   std::vector<std::shared_ptr<std::vector<Vector3d>>> vertex_lists(kHulls);
   for (int h = 0; h < kHulls; ++h) {

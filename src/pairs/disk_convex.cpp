@@ -126,38 +126,81 @@ struct ConvexGeometry {
   /// faces up to rounding; ~1e-7 of the size for quadrilaterals whose
   /// vertices were rounded to float, or data planar only to its precision.
   double face_thickness = 0.0;
+
+  /// The heap memory it holds, in bytes.
+  std::size_t bytes() const {
+    const auto of = [](const auto& list) { return list.capacity() * sizeof(list[0]); };
+    return of(faces) + of(edges) + of(triangles) + of(clusters) + of(neighbour_start) +
+           of(face_neighbours) +
+           sizeof(double) * std::size_t(planes.size() + points.size() + clustered_points.size() +
+                                        heights.size() + along.size());
+  }
 };
 
-/// How many hulls each thread keeps the geometry of (ConvexGeometryCache): a
-/// planner's scene holds several hulls and queries them in turn (a broadphase
-/// visits the hulls near a disk, in the same order on every query), and a hull
-/// whose geometry was dropped costs far more than its query (76 faces: ~95k
-/// instructions against ~3k; docs/disk_shape_distance.md, section 4). 32
-/// hulls of the ~100 vertices of a typical link's hull hold ~5 MB a thread.
-constexpr std::size_t kCachedHullCount = 32;
+/// How many hulls, and how much memory for them, each thread keeps the
+/// geometry of (ConvexGeometryCache): a planner's scene holds many hulls and a
+/// broadphase queries those near a disk in turn, and a hull whose geometry was
+/// dropped costs far more than its query (40 vertices, 76 faces: ~86k
+/// instructions against ~3k; docs/disk_shape_distance.md, section 4). 64 hulls
+/// of 40 vertices hold ~3 MB, of 100 vertices ~11 MB; hulls of 1000 vertices
+/// (~0.6 MB each) stop at the budget.
+constexpr std::size_t kMaxCachedHulls = 64;
+constexpr std::size_t kCachedHullBytes = std::size_t(16) << 20;
 
-/// The geometry of up to kCachedHullCount hulls this thread queried, each with
+/// The geometry of up to kMaxCachedHulls hulls this thread queried, each with
 /// a copy of the lists it was computed from. A hit needs the address and the
 /// lists equal bit for bit, so a hull destroyed and another built at the same
 /// address, or one whose shared lists were changed in place, is recomputed.
-/// A new hull takes a free slot, else a pseudo-random one: hulls queried in
-/// turn, more of them than slots, then still mostly hit, where replacing the
-/// least recently used would miss on every query.
+/// A new hull takes a free slot while the count and kCachedHullBytes allow;
+/// else one new hull in kCacheAdmission replaces a pseudo-random slot, and the
+/// others are computed into a slot of their own for the query: of hulls
+/// queried in turn, more of them than fit, those kept keep hitting (about as
+/// many hits as slots), where replacing the least recently used, or a random
+/// slot on every miss, would miss on nearly every query.
+constexpr std::uint64_t kCacheAdmission = 8;
+
 template <typename S>
 struct ConvexGeometryCache {
   struct Entry {
-    const void* shape = nullptr;  ///< the hull's address, never dereferenced
     std::vector<fcl::Vector3<S>> vertices;
     std::vector<int> face_list;
     int face_count = -1;
     ConvexGeometry geometry;
+    std::size_t bytes = 0;  ///< held by the three above
   };
+  /// The slot of a hull not kept, holding its geometry for its query only.
+  static constexpr std::size_t kQuerySlot = kMaxCachedHulls;
+  /// Each slot's hull address (never dereferenced; null while rebuilt), apart
+  /// from the entries so that a lookup scans one short array.
+  std::array<const void*, kMaxCachedHulls + 1> shapes{};
   /// Fixed slots: the geometry a query holds stays where it is while another
   /// slot is filled.
-  std::array<Entry, kCachedHullCount> entries;
-  std::size_t filled = 0;              ///< slots in use, the first ones
-  std::uint64_t replacements = 0;      ///< drives the choice of the slot replaced
-  const Entry* verified = nullptr;     ///< the entry geometryOf() compared last
+  std::array<Entry, kMaxCachedHulls + 1> entries;
+  std::size_t filled = 0;       ///< kept slots in use, the first ones
+  std::size_t bytes = 0;        ///< held by the kept entries
+  std::uint64_t new_hulls = 0;  ///< new hulls met with every slot in use
+  std::size_t verified = kQuerySlot;  ///< the slot geometryOf() compared last
+
+  /// The slot keeping `shape`'s address, or `filled` (the last one compared first).
+  std::size_t slotOf(const void* shape) const {
+    if (verified < filled && shapes[verified] == shape) return verified;
+    return std::size_t(std::find(shapes.begin(), shapes.begin() + filled, shape) - shapes.begin());
+  }
+
+  /// Where a new hull of `new_bytes` goes: a free slot while the count and the
+  /// budget allow, else (see kCacheAdmission) one in kCacheAdmission a slot of
+  /// a fixed pseudo-random sequence (splitmix64's finaliser of a counter), the
+  /// others kQuerySlot.
+  std::size_t slotForNewHull(std::size_t new_bytes) {
+    if (filled < kMaxCachedHulls && (filled == 0 || bytes + new_bytes <= kCachedHullBytes)) {
+      return filled++;
+    }
+    std::uint64_t z = (++new_hulls) * 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return z % kCacheAdmission == 0 ? std::size_t((z / kCacheAdmission) % filled) : kQuerySlot;
+  }
 };
 
 /// FCL's Convex: vertices, and faces encoded [k, i_1..i_k, k', ...], each listed
@@ -206,36 +249,40 @@ struct ConvexTarget {
 
   /// This thread's geometry of `shape`: its cache entry's when the lists are
   /// unchanged (compared bit for bit, sameBytes), else computed into its
-  /// entry or the least recently used one; that entry is then the verified one.
+  /// entry or a new one (ConvexGeometryCache::slotForNewHull); that entry is
+  /// then the verified one.
   static const ConvexGeometry& geometryOf(const fcl::Convex<S>& shape) {
     ConvexGeometryCache<S>& cached = cache();
-    using Entry = typename ConvexGeometryCache<S>::Entry;
-    Entry* entry = nullptr;
-    for (std::size_t slot = 0; slot < cached.filled && !entry; ++slot) {
-      if (cached.entries[slot].shape == &shape) entry = &cached.entries[slot];
-    }
+    std::size_t slot = cached.slotOf(&shape);
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
-    if (!(entry && entry->face_count == shape.getFaceCount() &&
-          sameBytes(entry->vertices, vertices) && sameBytes(entry->face_list, face_list))) {
-      if (!entry && cached.filled < kCachedHullCount) entry = &cached.entries[cached.filled++];
-      if (!entry) {
-        // splitmix64's finaliser of a counter: a fixed sequence of slots.
-        std::uint64_t z = (++cached.replacements) * 0x9E3779B97F4A7C15ull;
-        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-        z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-        entry = &cached.entries[(z ^ (z >> 31)) % kCachedHullCount];
+    if (slot < cached.filled) {
+      const auto& entry = cached.entries[slot];
+      if (entry.face_count == shape.getFaceCount() && sameBytes(entry.vertices, vertices) &&
+          sameBytes(entry.face_list, face_list)) {
+        cached.verified = slot;
+        return entry.geometry;
       }
-      entry->shape = nullptr;  // invalid while rebuilt
-      cached.verified = nullptr;
-      entry->vertices = vertices;
-      entry->face_list = face_list;
-      entry->geometry = computeGeometry(shape);
-      entry->face_count = shape.getFaceCount();
-      entry->shape = &shape;
     }
-    cached.verified = entry;
-    return entry->geometry;
+    ConvexGeometry geometry = computeGeometry(shape);
+    const std::size_t bytes = geometry.bytes() + vertices.size() * sizeof(vertices[0]) +
+                              face_list.size() * sizeof(int);
+    if (slot == cached.filled) slot = cached.slotForNewHull(bytes);
+    auto& entry = cached.entries[slot];
+    const bool kept = slot != ConvexGeometryCache<S>::kQuerySlot;
+    cached.shapes[slot] = nullptr;  // invalid while rebuilt
+    cached.verified = ConvexGeometryCache<S>::kQuerySlot;
+    if (kept) cached.bytes -= entry.bytes;
+    entry.bytes = 0;
+    entry.vertices = vertices;
+    entry.face_list = face_list;
+    entry.geometry = std::move(geometry);
+    entry.face_count = shape.getFaceCount();
+    entry.bytes = bytes;
+    if (kept) cached.bytes += bytes;
+    cached.shapes[slot] = &shape;
+    cached.verified = slot;
+    return entry.geometry;
   }
 
   /// The geometry of the hull geometryOf() verified last on this thread, when
@@ -243,8 +290,9 @@ struct ConvexTarget {
   /// boundingRadius and target) the lists are compared once.
   static const ConvexGeometry& verifiedGeometryOf(const fcl::Convex<S>& shape) {
     const ConvexGeometryCache<S>& cached = cache();
-    return cached.verified && cached.verified->shape == &shape ? cached.verified->geometry
-                                                               : geometryOf(shape);
+    return cached.shapes[cached.verified] == &shape
+               ? cached.entries[cached.verified].geometry
+               : geometryOf(shape);
   }
 
   /// |v| without overflow or underflow: the plain square root where the
