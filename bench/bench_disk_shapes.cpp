@@ -46,6 +46,11 @@
 // random poses: the same hull queried again and again, as a planner does.
 // Variants distance_disk_libccd and distance_flat_cylinder_<libccd|indep>.
 //
+// Hull contacts: disk_hull_contacts/<N>/<disk|flat_cylinder_libccd>/double,
+// fcl::collide asking for one contact (its exact penetration depth for the
+// disk, libccd's EPA for the flat cylinder) on 256 intersecting poses of the
+// hull of disk_convex_hulls/<N>.
+//
 // Hulls in turn: disk_hulls_in_turn/<H>/<variant>/double, H Convex hulls of
 // 40 random points on the sphere of radius 0.45, the pool's case k against
 // hull k % H: a scene's hulls queried one after another, as a broadphase
@@ -282,6 +287,9 @@ void registerQuery(const Query& q, const char* scalar, int* skipped) {
   });
 }
 
+/// Intersecting cases a hull size of the disk_hull_contacts benchmarks.
+constexpr std::size_t kContactCases = 256;
+
 /// The hull sizes of the disk_convex_hulls benchmarks.
 constexpr int kHullSizes[] = {40, 64, 100, 200, 400, 1000};
 
@@ -346,7 +354,72 @@ const Pool<double>& inTurnPool(int hull_count) {
   return *pools[slot];
 }
 
+/// Intersecting cases for the contact benchmarks: `count` random poses of a
+/// disk and hullPool(vertex_count)'s hull (the same hull) that intersect.
+struct ContactCases {
+  std::vector<std::unique_ptr<fcl::CollisionObject<double>>> disk, flat_cylinder, shape;
+};
+
+const ContactCases& contactCases(int vertex_count) {
+  static std::vector<std::unique_ptr<ContactCases>> all(std::size(kHullSizes));
+  const std::size_t slot =
+      std::size_t(std::find(std::begin(kHullSizes), std::end(kHullSizes), vertex_count) -
+                  std::begin(kHullSizes));
+  if (!all[slot]) {
+    const Pool<double>& hulls = hullPool(vertex_count);
+    const auto& hull = *static_cast<const fcl::Convex<double>*>(
+        hulls.shape[0]->collisionGeometry().get());
+    fcl_disk_test::Random random(kSeed + 31 * std::uint64_t(vertex_count));
+    auto cases = std::make_unique<ContactCases>();
+    while (cases->disk.size() < kContactCases) {
+      const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
+      const fcl::Transform3<double> X_WS = dsc::detail::randomPose(random);
+      if (!fcl_disk::diskShapeIntersect(double(dsc::kDiskRadius), X_WD, hull, X_WS,
+                                        static_cast<fcl_disk::DiskContact<double>*>(nullptr))) {
+        continue;
+      }
+      cases->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
+      cases->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
+      cases->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(
+          std::const_pointer_cast<fcl::CollisionGeometry<double>>(hulls.shape[0]->collisionGeometry()),
+          X_WS));
+    }
+    all[slot] = std::move(cases);
+  }
+  return *all[slot];
+}
+
+/// fcl::collide with one contact asked (its depth and normal) on the
+/// intersecting cases in turn: the disk, or the flat cylinder under libccd's EPA.
+void benchHullContacts(benchmark::State& state, int vertex_count, bool flat_cylinder) {
+  const ContactCases& cases = contactCases(vertex_count);
+  const fcl::CollisionRequest<double> request(1, /*enable_contact=*/true);
+  std::size_t i = 0;
+  double depths = 0.0;
+  for (auto _ : state) {
+    const std::size_t k = i++ % kContactCases;
+    fcl::CollisionResult<double> result;
+    fcl::collide((flat_cylinder ? cases.flat_cylinder : cases.disk)[k].get(), cases.shape[k].get(),
+                 request, result);
+    if (result.numContacts() > 0) depths += result.getContact(0).penetration_depth;
+    benchmark::DoNotOptimize(result);
+  }
+  state.SetItemsProcessed(state.iterations());
+  state.counters["mean_depth"] = depths / double(std::max<std::int64_t>(1, state.iterations()));
+}
+
 void registerHulls() {
+  for (const int vertex_count : kHullSizes) {
+    for (const bool flat_cylinder : {false, true}) {
+      const std::string name = "disk_hull_contacts/" + std::to_string(vertex_count) + "/" +
+                               (flat_cylinder ? "flat_cylinder_libccd" : "disk") + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [vertex_count, flat_cylinder](benchmark::State& st) {
+        benchHullContacts(st, vertex_count, flat_cylinder);
+      });
+    }
+  }
   for (const int hull_count : kHullCounts) {
     for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
                            Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {

@@ -55,6 +55,18 @@ constexpr int kClusterSize = 16;
 /// construction costs more than it saves where hulls change often (section 4).
 constexpr std::size_t kClimbingFaceCount = 100;
 
+/// The penetration depth's edge candidates (ConvexTraits::contactDirections)
+/// skip an edge whose arc of directions cannot beat the best depth found: the
+/// arc is that of the edge's two face normals, known to their rounding, so the
+/// bound over it is lowered by what a widening of the arc by this angle (rad)
+/// could lower F, far above the normals' rounding (at most ~1e-10 rad for
+/// normals of faces at least kWellConditionedFace wide, relative to their size).
+constexpr double kEdgeArcMargin = 1e-9;
+/// A face whose Newell normal is at least this times the square of its size
+/// (twice its ball's radius) has a normal known to ~eps / this: its edges' arcs
+/// may be pruned.
+constexpr double kWellConditionedFace = 1e-6;
+
 /// A face of the polytope: where its vertex indices start in FCL's face list,
 /// how many, its outward unit normal (zero for a face of zero area), the
 /// plane's offset (normal . vertex), and a ball holding the polygon (centre the
@@ -67,6 +79,14 @@ struct ConvexFace {
   double offset;
   Vec3 centre;
   double radius;
+  bool well_conditioned;  ///< its normal is known to ~eps / kWellConditionedFace
+};
+
+/// An edge of the hull's faces, listed once: its vertices and, where exactly
+/// two faces share it, those two (else -1).
+struct ConvexHullEdge {
+  int from, to;
+  int face_a = -1, face_b = -1;
 };
 
 /// A face's edge from its vertex i to the next, with what the nearest-feature
@@ -126,6 +146,14 @@ struct ConvexGeometry {
   /// faces up to rounding; ~1e-7 of the size for quadrilaterals whose
   /// vertices were rounded to float, or data planar only to its precision.
   double face_thickness = 0.0;
+  /// The hull's edges with their faces, for the penetration depth's candidates
+  /// only: built on the first contact query of the hull on this thread.
+  mutable std::vector<ConvexHullEdge> hull_edges;
+  /// The vertices extreme along 14 directions (the axes and the cube's
+  /// diagonals, both signs), whose greatest value along w bounds the hull's
+  /// support from below: built with hull_edges.
+  mutable std::array<Vec3, 14> probes{};
+  mutable bool hull_edges_built = false;
 
   /// The heap memory it holds, in bytes.
   std::size_t bytes() const {
@@ -361,7 +389,8 @@ struct ConvexTarget {
       }
       geometry.face_thickness = std::max(geometry.face_thickness, highest - lowest);
       faces.push_back(ConvexFace{at + 1, count, geometry.edges.size(), unit,
-                                 unit.dot(vertex(index[0])), centre, radius});
+                                 unit.dot(vertex(index[0])), centre, radius,
+                                 area > 0.0 && area >= kWellConditionedFace * 4.0 * radius * radius});
       for (int i = 0; i < count; ++i) {
         const Vec3 from = vertex(index[i]), to = vertex(index[(i + 1) % count]);
         const Vec3 along = to - from, inwards = unit.cross(along);
@@ -468,27 +497,45 @@ struct ConvexTarget {
     }
   }
 
-  /// The edges of the faces, each once (vertex indices, the smaller first):
-  /// only the penetration candidates need them, so they are not part of the
-  /// per-hull geometry every distance query pays for.
-  static std::vector<std::array<int, 2>> edgesOf(const fcl::Convex<S>& shape) {
-    std::vector<std::uint64_t> keys;
+  /// The hull's edges with their faces (ConvexGeometry::hull_edges), built on
+  /// first use: the faces' edges as sorted (smaller, larger vertex) keys.
+  static const std::vector<ConvexHullEdge>& hullEdgesOf(const fcl::Convex<S>& shape,
+                                                        const ConvexGeometry& geometry) {
+    if (geometry.hull_edges_built) return geometry.hull_edges;
+    std::vector<std::pair<std::uint64_t, int>> keys;  // (vertex pair, face)
     const std::vector<int>& list = shape.getFaces();
-    std::size_t at = 0;
-    for (int f = 0; f < shape.getFaceCount(); ++f) {
-      const int count = list[at];
+    for (std::size_t f = 0; f < geometry.faces.size(); ++f) {
+      const int* index = &list[geometry.faces[f].start];
+      const int count = geometry.faces[f].count;
       for (int i = 0; i < count; ++i) {
-        const auto from = std::uint32_t(list[at + 1 + i]);
-        const auto to = std::uint32_t(list[at + 1 + (i + 1) % count]);
-        keys.push_back(std::uint64_t(std::min(from, to)) << 32 | std::max(from, to));
+        const auto from = std::uint32_t(index[i]), to = std::uint32_t(index[(i + 1) % count]);
+        keys.emplace_back(std::uint64_t(std::min(from, to)) << 32 | std::max(from, to), int(f));
       }
-      at += count + 1;
     }
     std::sort(keys.begin(), keys.end());
-    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-    std::vector<std::array<int, 2>> edges;
-    edges.reserve(keys.size());
-    for (const std::uint64_t key : keys) edges.push_back({int(key >> 32), int(key & 0xffffffffu)});
+    std::vector<ConvexHullEdge>& edges = geometry.hull_edges;
+    edges.clear();
+    for (std::size_t i = 0; i < keys.size();) {
+      std::size_t end = i + 1;
+      while (end < keys.size() && keys[end].first == keys[i].first) ++end;
+      ConvexHullEdge edge{int(keys[i].first >> 32), int(keys[i].first & 0xffffffffu)};
+      if (end - i == 2 && keys[i].second != keys[i + 1].second) {
+        edge.face_a = keys[i].second, edge.face_b = keys[i + 1].second;
+      }
+      edges.push_back(edge);
+      i = end;
+    }
+    for (int k = 0; k < 14; ++k) {
+      // k < 6: +-x, +-y, +-z; then the 8 diagonals (+-1, +-1, +-1).
+      const Vec3 direction = k < 6 ? Vec3((k / 2 == 0) - 0.0, (k / 2 == 1) - 0.0, (k / 2 == 2) - 0.0) *
+                                         (k % 2 == 0 ? 1.0 : -1.0)
+                                   : Vec3((k - 6) & 1 ? -1.0 : 1.0, (k - 6) & 2 ? -1.0 : 1.0,
+                                          (k - 6) & 4 ? -1.0 : 1.0);
+      Eigen::Index extreme = 0;
+      (geometry.points * direction).maxCoeff(&extreme);
+      geometry.probes[std::size_t(k)] = geometry.points.row(extreme).transpose();
+    }
+    geometry.hull_edges_built = true;
     return edges;
   }
 
@@ -900,22 +947,134 @@ struct ConvexTraits {
   /// The directions among which the shortest separating translation lies
   /// (shortestSeparation adds the disk's normals and both signs), so the contact's
   /// depth is the exact penetration depth of a Convex whose faces bound the
-  /// hull of its vertices: the face normals, and the vertices' and edge lines'
+  /// hull of its vertices: the face normals, and the vertices' and edges'
   /// candidates (feature_candidates.h; docs/penetration_depth.md, section 7).
+  /// For a pair that shares a point, candidates that cannot beat the best depth
+  /// found are skipped: an edge whose arc of directions cannot
+  /// (edgeArcCannotBeat), and a direction whose depth along either sign is
+  /// bounded by a point of the hull above the bound (FeaturePointBound), so the
+  /// hull's support is evaluated only for the others.
   template <typename Search>
   static void contactDirections(const ConvexTarget<S>& target, const DiskInShape& disk,
                                 Search* directions) {
-    const auto& vertices = target.convex->getVertices();
-    for (const ConvexFace& face : target.faces) directions->push_back(face.unit_normal);
-    for (const auto& vertex : vertices) {
-      addVertexCandidates(disk, vertex.template cast<double>(), directions);
+    const ConvexGeometry& geometry = target.geometry;
+    const std::vector<ConvexHullEdge>& hull_edges =
+        ConvexTarget<S>::hullEdgesOf(*target.convex, geometry);
+    const auto vertex = [&](int index) { return target.points.row(index).transpose().eval(); };
+    for (const ConvexFace& face : target.faces) {
+      FeaturePointBound<Search>{disk, vertex(target.list[face.start]), *directions, geometry.probes}
+          .push_back(face.unit_normal);
     }
-    for (const auto& edge : ConvexTarget<S>::edgesOf(*target.convex)) {
-      const Vec3 from = vertices[edge[0]].template cast<double>();
-      const Vec3 along = vertices[edge[1]].template cast<double>() - from;
+    for (Eigen::Index i = 0; i < target.points.rows(); ++i) {
+      FeaturePointBound<Search> bounded{disk, vertex(int(i)), *directions, geometry.probes};
+      addVertexCandidates(disk, bounded.point, &bounded);
+    }
+    const bool orthonormal_disk = isOrthonormal(disk);
+    for (const ConvexHullEdge& edge : hull_edges) {
+      const Vec3 from = vertex(edge.from), along = vertex(edge.to) - from;
       const double length = ConvexTarget<S>::safeNorm(along);
-      if (length > 0.0) addEdgeLineCandidates(disk, from, along / length, directions);
+      if (!(length > 0.0)) continue;
+      if (edgeArcCannotBeat(geometry, edge, disk, orthonormal_disk, from,
+                            directions->pruningBound())) {
+        continue;
+      }
+      FeaturePointBound<Search> bounded{disk, from, *directions, geometry.probes};
+      addEdgeLineCandidates(disk, from, along / length, &bounded);
     }
+  }
+
+  /// A search's candidates, each evaluated only where it can beat the
+  /// search's pruning bound: F(w) = h_disk(w) + h_core(-w) + rho, and the
+  /// core's support is at least the greatest value along -w of any of its
+  /// points, here the feature's `point` and the hull's probes
+  /// (ConvexGeometry::probes). A direction whose bound exceeds the pruning
+  /// bound along both signs cannot win, and its support is not scanned.
+  template <typename Search>
+  struct FeaturePointBound {
+    const DiskInShape& disk;
+    Vec3 point;
+    Search& search;
+    const std::array<Vec3, 14>& probes;
+
+    void push_back(const Vec3& w) {
+      const double length = w.norm();
+      const double bound = search.pruningBound();
+      if (length > 0.0 && bound < std::numeric_limits<double>::infinity()) {
+        const Vec3 unit = w / length;
+        double least = unit.dot(point), most = least;  // over the points: w.p
+        for (const Vec3& probe : probes) {
+          const double along = unit.dot(probe);
+          least = std::min(least, along), most = std::max(most, along);
+        }
+        const double rho = search.inflation();
+        if (disk.support(unit) - least + rho > bound && disk.support(-unit) + most + rho > bound) {
+          return;
+        }
+      }
+      search.push_back(w);
+    }
+    bool prunes() const { return search.prunes(); }
+    double pruningBound() const { return search.pruningBound(); }
+    double inflation() const { return search.inflation(); }
+  };
+
+  /// Whether the disk's axes are orthonormal to rounding, so that |P w|^2 =
+  /// 1 - (n.w)^2 (the axes solvedDiskInShape gives a Convex pair).
+  static bool isOrthonormal(const DiskInShape& disk) {
+    constexpr double kAxesRounding = 1e-12;
+    return std::abs(disk.u.squaredNorm() - 1.0) <= kAxesRounding &&
+           std::abs(disk.v.squaredNorm() - 1.0) <= kAxesRounding &&
+           std::abs(disk.u.dot(disk.v)) <= kAxesRounding &&
+           (disk.u.cross(disk.v) - disk.n).cwiseAbs().maxCoeff() <= kAxesRounding;
+  }
+
+  /// Whether F exceeds `bound` on the whole arc of directions where `edge` is
+  /// the hull's support: w normal to the edge with -w between its two faces'
+  /// outward normals n1, n2 (docs/penetration_depth.md, section 7). There
+  /// F(w) = w.(c - a) + r |P w| (a on the edge), bounded below on the arc
+  /// -w(t) = cos t n1 + sin t m (m the unit part of n2 normal to n1, t in
+  /// [0, alpha]) by the least of the linear term (a sinusoid in t: its ends,
+  /// or its minimum where its slope turns from - to + inside) plus r times the
+  /// least |P w| = sqrt(1 - max (n.w)^2) (the same for the sinusoid n.w), less
+  /// what widening the arc by kEdgeArcMargin plus the faces' thickness over
+  /// their size could lower it (F moves at most |c - a| + r per radian).
+  /// False (the edge is searched) where that does not hold: an edge of one or
+  /// three faces, faces too thin for their normals, faces back to back, or no
+  /// finite bound yet.
+  static bool edgeArcCannotBeat(const ConvexGeometry& geometry, const ConvexHullEdge& edge,
+                                const DiskInShape& disk, bool orthonormal_disk, const Vec3& a,
+                                double bound) {
+    if (edge.face_a < 0 || !(bound < std::numeric_limits<double>::infinity())) return false;
+    const ConvexFace& face_a = geometry.faces[std::size_t(edge.face_a)];
+    const ConvexFace& face_b = geometry.faces[std::size_t(edge.face_b)];
+    if (!(face_a.well_conditioned && face_b.well_conditioned)) return false;
+    const Vec3& n1 = face_a.unit_normal;
+    const Vec3& n2 = face_b.unit_normal;
+    const double cos_alpha = n1.dot(n2);
+    constexpr double kBackToBack = 1e-6;  // 1 + cos alpha: the arc is nearly a half circle
+    if (!(cos_alpha > kBackToBack - 1.0)) return false;
+    const Vec3 m_raw = n2 - cos_alpha * n1;
+    const double sin_alpha = m_raw.norm();
+    const Vec3 m = sin_alpha > 0.0 ? Vec3(m_raw / sin_alpha) : Vec3::Zero();
+    // The sinusoid A cos t + B sin t on [0, alpha], ends start and end: its
+    // least value and its largest magnitude there.
+    const auto slope_at_end = [&](double A, double B) { return B * cos_alpha - A * sin_alpha; };
+    const Vec3 d = disk.c - a;
+    const double A = -n1.dot(d), B = -m.dot(d);
+    double least_linear = std::min(A, -n2.dot(d));
+    if (B <= 0.0 && slope_at_end(A, B) >= 0.0) least_linear = -std::hypot(A, B);
+    double in_plane = 0.0;  // a lower bound of |P w| on the arc
+    if (orthonormal_disk) {
+      const double A_n = -n1.dot(disk.n), B_n = -m.dot(disk.n);
+      double most_normal = std::max(std::abs(A_n), std::abs(n2.dot(disk.n)));
+      if ((B_n >= 0.0) != (slope_at_end(A_n, B_n) > 0.0)) most_normal = std::hypot(A_n, B_n);
+      in_plane = std::sqrt(std::max(0.0, 1.0 - most_normal * most_normal));
+    }
+    const double smallest_face = std::min(face_a.radius, face_b.radius);
+    const double widening =
+        kEdgeArcMargin + (smallest_face > 0.0 ? 2.0 * geometry.face_thickness / smallest_face : 1.0);
+    const double lower = least_linear + disk.r * in_plane - widening * (d.norm() + disk.r);
+    return lower > bound;
   }
 };
 
