@@ -126,6 +126,8 @@ class SeparationSearch {
     consider(w);
     consider(-w);
   }
+  /// w alone, for a candidate whose other sign is known not to be one.
+  void push_one(const Vec3& w) { consider(w); }
   /// Whether candidates that cannot beat pruningBound() may be skipped.
   bool prunes() const { return prune_slack_ >= 0.0; }
   /// A depth no skipped candidate could reach: infinite until a positive depth

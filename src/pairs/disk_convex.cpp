@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -260,9 +261,13 @@ struct ConvexTarget {
         flat(geometry.flat),
         face_thickness(geometry.face_thickness) {}
 
+  /// This thread's cache, on the heap: a library's thread-local block must fit
+  /// the static TLS a process gives a library it loads with dlopen (the hook's
+  /// initial-exec counter puts the whole block there), a few hundred bytes.
   static ConvexGeometryCache<S>& cache() {
-    thread_local ConvexGeometryCache<S> cache;
-    return cache;
+    thread_local std::unique_ptr<ConvexGeometryCache<S>> cache;
+    if (!cache) cache = std::make_unique<ConvexGeometryCache<S>>();
+    return *cache;
   }
 
   /// Whether two lists hold the same values bit for bit (one memcmp: a
@@ -961,13 +966,24 @@ struct ConvexTraits {
     const std::vector<ConvexHullEdge>& hull_edges =
         ConvexTarget<S>::hullEdgesOf(*target.convex, geometry);
     const auto vertex = [&](int index) { return target.points.row(index).transpose().eval(); };
+    // A face is the hull's support along its outward normal -w: w = -normal.
     for (const ConvexFace& face : target.faces) {
       FeaturePointBound<Search>{disk, vertex(target.list[face.start]), *directions, geometry.probes}
-          .push_back(face.unit_normal);
+          .push_one(-face.unit_normal);
     }
+    // A vertex s's candidates (addVertexCandidates): w along b - s for the rim
+    // points b nearest and farthest s, with the sign whose disk support point
+    // is b ((b - c) . w > 0), where F(w) = h_disk(w) - w.s is stationary.
     for (Eigen::Index i = 0; i < target.points.rows(); ++i) {
       FeaturePointBound<Search> bounded{disk, vertex(int(i)), *directions, geometry.probes};
-      addVertexCandidates(disk, bounded.point, &bounded);
+      const Vec2 radial = disk.inPlane(bounded.point - disk.c);
+      const double length = radial.norm();
+      if (!(length > 0.0)) continue;
+      const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
+      for (const Vec3& offset : {rim_offset, Vec3(-rim_offset)}) {
+        const Vec3 w = disk.c + offset - bounded.point;
+        bounded.push_one(offset.dot(w) >= 0.0 ? w : Vec3(-w));
+      }
     }
     const bool orthonormal_disk = isOrthonormal(disk);
     for (const ConvexHullEdge& edge : hull_edges) {
@@ -996,6 +1012,18 @@ struct ConvexTraits {
     Search& search;
     const std::array<Vec3, 14>& probes;
 
+    /// w alone (the feature can be the support along -w only).
+    void push_one(const Vec3& w) {
+      const double length = w.norm();
+      const double bound = search.pruningBound();
+      if (length > 0.0 && bound < std::numeric_limits<double>::infinity()) {
+        const Vec3 unit = w / length;
+        double least = unit.dot(point);
+        for (const Vec3& probe : probes) least = std::min(least, unit.dot(probe));
+        if (disk.support(unit) - least + search.inflation() > bound) return;
+      }
+      search.push_one(w);
+    }
     void push_back(const Vec3& w) {
       const double length = w.norm();
       const double bound = search.pruningBound();
