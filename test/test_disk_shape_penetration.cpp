@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "disk_shape_penetration_draws.h"
+#include "hull_lists.h"
 #include "reference_penetration.h"
 #include "reference_shape_penetration.h"
 #include "test_random.h"
@@ -181,6 +182,48 @@ TYPED_TEST(DiskShapePenetration, TriangleMatchesReference) {
 }
 TYPED_TEST(DiskShapePenetration, ConvexMatchesReference) {
   checkShape<TypeParam, fcl::Convex<TypeParam>>("convex", 18, kSearchedPoses);
+}
+
+/// fcl::Convex<S> of `lists`.
+template <typename S>
+fcl::Convex<S> convexOf(const fcl_disk_test::HullLists& lists) {
+  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+  for (const Vd& v : lists.vertices) vertices->push_back(v.cast<S>());
+  auto face_list = std::make_shared<std::vector<int>>();
+  for (const auto& face : lists.faces) {
+    face_list->push_back(int(face.size()));
+    face_list->insert(face_list->end(), face.begin(), face.end());
+  }
+  return fcl::Convex<S>(vertices, int(lists.faces.size()), face_list);
+}
+
+// Contacts against hulls with many features, where most candidates are
+// screened out before their support scan (ConvexTraits::contactDirections):
+// a ring hull (74 vertices, 84 faces: quadrilaterals and triangle fans) and a
+// cube cut into 192 coplanar triangles (98 vertices), 4 intersecting random
+// poses each, against the long-double reference.
+TYPED_TEST(DiskShapePenetration, LargeHullsMatchReference) {
+  using S = TypeParam;
+  const fcl::Convex<S> hulls[] = {
+      convexOf<S>(fcl_disk_test::ringHull(6, 12, Vd(0.9, 0.7, 0.5))),
+      convexOf<S>(fcl_disk_test::subdividedCube(4, 0.6))};
+  Random rng(19);
+  for (const fcl::Convex<S>& hull : hulls) {
+    int intersecting = 0;
+    for (int attempt = 0; attempt < 200 && intersecting < 4; ++attempt) {
+      const S r = S(rng.uniform(0.2, 1.0));
+      const fcl::Transform3<S> X_WD = randomPose<S>(rng, 1.0);
+      const fcl::Transform3<S> X_WS = randomPose<S>(rng, 1.0);
+      const auto answer = fcl_disk::signedDiskShapeDistance(r, X_WD, hull, X_WS);
+      if (!(answer.signed_distance < 0)) continue;
+      ++intersecting;
+      const double scale = double(r) + 1.0 + 2.0;  // r + hull size + centre distance bound
+      EXPECT_NEAR(-double(answer.signed_distance), double(referenceDepth(r, X_WD, hull, X_WS)),
+                  kDepthRelative<S> * scale)
+          << hull.getFaceCount() << " faces, attempt " << attempt;
+    }
+    EXPECT_EQ(intersecting, 4);
+  }
 }
 
 /// The pose with these three rows of its 3x4 matrix [R | t].

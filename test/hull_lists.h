@@ -1,0 +1,89 @@
+// Large convex hulls as vertex and face lists, for the tests of the Convex
+// pair's paths of many faces and vertices (test_disk_shape_cases,
+// test_disk_shape_penetration).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace fcl_disk_test {
+
+using Vector3d = Eigen::Vector3d;
+
+/// A large hull as vertices and faces (counter-clockwise seen from outside).
+struct HullLists {
+  std::vector<Vector3d> vertices;
+  std::vector<std::vector<int>> faces;
+};
+
+/// The polyhedron of `rings` latitude circles of `around` points on the unit
+/// sphere, scaled by `semi_axes`, and the two poles: planar quadrilaterals
+/// between the rings and triangle fans at the poles (strictly convex).
+inline HullLists ringHull(int rings, int around, const Vector3d& semi_axes) {
+  HullLists hull;
+  hull.vertices.push_back(Vector3d(0, 0, -semi_axes.z()));
+  for (int ring = 0; ring < rings; ++ring) {
+    const double polar = M_PI * (ring + 1) / (rings + 1);
+    for (int k = 0; k < around; ++k) {
+      const double azimuth = 2 * M_PI * k / around;
+      hull.vertices.push_back(semi_axes.cwiseProduct(Vector3d(
+          std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth), -std::cos(polar))));
+    }
+  }
+  hull.vertices.push_back(Vector3d(0, 0, semi_axes.z()));
+  const auto at_ring = [&](int ring, int k) { return 1 + ring * around + (k % around); };
+  const int top = int(hull.vertices.size()) - 1;
+  for (int k = 0; k < around; ++k) {
+    hull.faces.push_back({0, at_ring(0, k + 1), at_ring(0, k)});
+    for (int ring = 0; ring + 1 < rings; ++ring) {
+      hull.faces.push_back({at_ring(ring, k), at_ring(ring, k + 1), at_ring(ring + 1, k + 1),
+                            at_ring(ring + 1, k)});
+    }
+    hull.faces.push_back({at_ring(rings - 1, k), at_ring(rings - 1, k + 1), top});
+  }
+  return hull;
+}
+
+/// The cube [-h, h]^3 with each face cut into n x n squares, each split into
+/// two triangles: many coplanar faces (ties everywhere for the face climb and
+/// the vertex clusters).
+inline HullLists subdividedCube(int n, double h) {
+  HullLists hull;
+  std::map<std::array<int, 3>, int> index;
+  const auto vertex = [&](std::array<int, 3> grid) {
+    const auto [it, added] = index.emplace(grid, int(hull.vertices.size()));
+    if (added) hull.vertices.push_back(h * (Vector3d(grid[0], grid[1], grid[2]) * (2.0 / n) - Vector3d::Ones()));
+    return it->second;
+  };
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const int side : {0, n}) {
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      for (int i = 0; i < n; ++i) {
+        for (int j = 0; j < n; ++j) {
+          std::array<int, 4> corner;
+          const int steps[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+          for (int c = 0; c < 4; ++c) {
+            std::array<int, 3> grid{};
+            grid[axis] = side, grid[a] = i + steps[c][0], grid[b] = j + steps[c][1];
+            corner[c] = vertex(grid);
+          }
+          // (a, b, axis) is right-handed: counter-clockwise in (a, b) faces +axis.
+          if (side == n) {
+            hull.faces.push_back({corner[0], corner[1], corner[2]});
+            hull.faces.push_back({corner[0], corner[2], corner[3]});
+          } else {
+            hull.faces.push_back({corner[0], corner[2], corner[1]});
+            hull.faces.push_back({corner[0], corner[3], corner[2]});
+          }
+        }
+      }
+    }
+  }
+  return hull;
+}
+
+}  // namespace fcl_disk_test
