@@ -293,30 +293,40 @@ constexpr std::size_t kContactCases = 256;
 /// The hull sizes of the disk_convex_hulls benchmarks.
 constexpr int kHullSizes[] = {40, 64, 100, 200, 400, 1000};
 
-/// kPoolSize cases of a disk (and the flat cylinder at its pose) against one
-/// Convex of `vertex_count` random points on a sphere, built on first use.
+/// Where `value` is in `values` (the slot of a benchmark's lazily built cases).
+template <std::size_t N>
+std::size_t slotOf(const int (&values)[N], int value) {
+  return std::size_t(std::find(std::begin(values), std::end(values), value) - std::begin(values));
+}
+
+/// kPoolSize cases of a disk (and the flat cylinder at its pose) at random
+/// poses against `hulls`, case k against hull k % hulls.size() at a random pose.
+std::unique_ptr<Pool<double>> hullCases(
+    const std::vector<std::shared_ptr<fcl::ShapeBase<double>>>& hulls,
+    fcl_disk_test::Random& random) {
+  auto pool = std::make_unique<Pool<double>>();
+  for (std::size_t k = 0; k < kPoolSize; ++k) {
+    const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
+    pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
+        std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
+    pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
+        std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
+    pool->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(
+        hulls[k % hulls.size()], dsc::detail::randomPose(random)));
+  }
+  return pool;
+}
+
+/// kPoolSize cases against one Convex of `vertex_count` random points on a
+/// sphere, built on first use.
 const Pool<double>& hullPool(int vertex_count) {
   static std::vector<std::unique_ptr<Pool<double>>> pools(std::size(kHullSizes));
-  const std::size_t slot =
-      std::size_t(std::find(std::begin(kHullSizes), std::end(kHullSizes), vertex_count) -
-                  std::begin(kHullSizes));
-  if (!pools[slot]) {
+  auto& pool = pools[slotOf(kHullSizes, vertex_count)];
+  if (!pool) {
     fcl_disk_test::Random random(kSeed + std::uint64_t(vertex_count));
-    const std::shared_ptr<fcl::ShapeBase<double>> hull =
-        dsc::makeShape<double>(dsc::detail::sphereHull(vertex_count, random));
-    auto pool = std::make_unique<Pool<double>>();
-    for (std::size_t k = 0; k < kPoolSize; ++k) {
-      const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
-      pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
-      pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
-      pool->shape.push_back(
-          std::make_unique<fcl::CollisionObject<double>>(hull, dsc::detail::randomPose(random)));
-    }
-    pools[slot] = std::move(pool);
+    pool = hullCases({dsc::makeShape<double>(dsc::detail::sphereHull(vertex_count, random))}, random);
   }
-  return *pools[slot];
+  return *pool;
 }
 
 void benchHull(benchmark::State& state, int vertex_count, Query q) {
@@ -330,28 +340,16 @@ constexpr int kHullCounts[] = {1, 8, 64, 96, 128};
 /// sphere, case k against hull k % hull_count: the hulls queried in turn.
 const Pool<double>& inTurnPool(int hull_count) {
   static std::vector<std::unique_ptr<Pool<double>>> pools(std::size(kHullCounts));
-  const std::size_t slot =
-      std::size_t(std::find(std::begin(kHullCounts), std::end(kHullCounts), hull_count) -
-                  std::begin(kHullCounts));
-  if (!pools[slot]) {
+  auto& pool = pools[slotOf(kHullCounts, hull_count)];
+  if (!pool) {
     fcl_disk_test::Random random(kSeed + 7919 * std::uint64_t(hull_count));
     std::vector<std::shared_ptr<fcl::ShapeBase<double>>> hulls;
     for (int h = 0; h < hull_count; ++h) {
       hulls.push_back(dsc::makeShape<double>(dsc::detail::sphereHull(40, random)));
     }
-    auto pool = std::make_unique<Pool<double>>();
-    for (std::size_t k = 0; k < kPoolSize; ++k) {
-      const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
-      pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
-      pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
-      pool->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          hulls[k % std::size_t(hull_count)], dsc::detail::randomPose(random)));
-    }
-    pools[slot] = std::move(pool);
+    pool = hullCases(hulls, random);
   }
-  return *pools[slot];
+  return *pool;
 }
 
 /// Intersecting cases for the contact benchmarks: `count` random poses of a
@@ -362,9 +360,7 @@ struct ContactCases {
 
 const ContactCases& contactCases(int vertex_count) {
   static std::vector<std::unique_ptr<ContactCases>> all(std::size(kHullSizes));
-  const std::size_t slot =
-      std::size_t(std::find(std::begin(kHullSizes), std::end(kHullSizes), vertex_count) -
-                  std::begin(kHullSizes));
+  const std::size_t slot = slotOf(kHullSizes, vertex_count);
   if (!all[slot]) {
     const Pool<double>& hulls = hullPool(vertex_count);
     const auto& hull = *static_cast<const fcl::Convex<double>*>(
