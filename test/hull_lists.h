@@ -4,10 +4,12 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <fcl/geometry/shape/convex.h>
 
 #include <array>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <vector>
 
 namespace fcl_disk_test {
@@ -84,6 +86,24 @@ inline HullLists subdividedCube(int n, double h) {
     }
   }
   return hull;
+}
+
+/// FCL's face list of `lists`: [k, i_1..i_k, k', ...].
+inline std::shared_ptr<std::vector<int>> faceListOf(const HullLists& lists) {
+  auto face_list = std::make_shared<std::vector<int>>();
+  for (const auto& face : lists.faces) {
+    face_list->push_back(int(face.size()));
+    face_list->insert(face_list->end(), face.begin(), face.end());
+  }
+  return face_list;
+}
+
+/// fcl::Convex<S> of `lists`, its vertices rounded to S.
+template <typename S>
+fcl::Convex<S> convexOf(const HullLists& lists) {
+  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
+  for (const Vector3d& v : lists.vertices) vertices->push_back(v.cast<S>());
+  return fcl::Convex<S>(vertices, int(lists.faces.size()), faceListOf(lists));
 }
 
 }  // namespace fcl_disk_test

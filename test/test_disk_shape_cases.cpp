@@ -768,16 +768,11 @@ template <typename S>
 void checkLargeHull(const HullLists& lists, const char* name, int reference_poses = 15,
                     const Vector3d& hull_position = Vector3d::Zero()) {
   namespace ref = fcl_disk_test::ref;
-  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
-  for (const Vector3d& v : lists.vertices) vertices->push_back(v.cast<S>());
-  auto face_list = std::make_shared<std::vector<int>>();
-  for (const auto& face : lists.faces) {
-    face_list->push_back(int(face.size()));
-    face_list->insert(face_list->end(), face.begin(), face.end());
-  }
-  const fcl::Convex<S> hull(vertices, int(lists.faces.size()), face_list);
+  const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
   ref::Convex reference_hull;
-  for (const auto& v : *vertices) reference_hull.vertices.push_back(v.template cast<ref::Real>());
+  for (const auto& v : hull.getVertices()) {
+    reference_hull.vertices.push_back(v.template cast<ref::Real>());
+  }
   reference_hull.faces = lists.faces;
   const double tolerance = std::is_same<S, float>::value ? 8 * 1.2e-7 : kExact;
   double hull_radius = 0;
@@ -848,12 +843,8 @@ TEST(DiskShapeCases, DegenerateLargeHullsStayCertified) {
 std::shared_ptr<fcl::Convexd> convexOf(const HullLists& lists,
                                        std::shared_ptr<std::vector<Vector3d>>* vertices) {
   *vertices = std::make_shared<std::vector<Vector3d>>(lists.vertices);
-  auto face_list = std::make_shared<std::vector<int>>();
-  for (const auto& face : lists.faces) {
-    face_list->push_back(int(face.size()));
-    face_list->insert(face_list->end(), face.begin(), face.end());
-  }
-  return std::make_shared<fcl::Convexd>(*vertices, int(lists.faces.size()), face_list);
+  return std::make_shared<fcl::Convexd>(*vertices, int(lists.faces.size()),
+                                        fcl_disk_test::faceListOf(lists));
 }
 
 // Each thread keeps the geometry of the hulls it queries (ConvexGeometryCache):

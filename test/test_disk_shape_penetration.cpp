@@ -184,19 +184,6 @@ TYPED_TEST(DiskShapePenetration, ConvexMatchesReference) {
   checkShape<TypeParam, fcl::Convex<TypeParam>>("convex", 18, kSearchedPoses);
 }
 
-/// fcl::Convex<S> of `lists`.
-template <typename S>
-fcl::Convex<S> convexOf(const fcl_disk_test::HullLists& lists) {
-  auto vertices = std::make_shared<std::vector<fcl::Vector3<S>>>();
-  for (const Vd& v : lists.vertices) vertices->push_back(v.cast<S>());
-  auto face_list = std::make_shared<std::vector<int>>();
-  for (const auto& face : lists.faces) {
-    face_list->push_back(int(face.size()));
-    face_list->insert(face_list->end(), face.begin(), face.end());
-  }
-  return fcl::Convex<S>(vertices, int(lists.faces.size()), face_list);
-}
-
 // Contacts against hulls with many features, where most candidates are
 // screened out before their support scan (ConvexTraits::contactDirections):
 // a ring hull (74 vertices, 84 faces: quadrilaterals and triangle fans) and a
@@ -205,8 +192,8 @@ fcl::Convex<S> convexOf(const fcl_disk_test::HullLists& lists) {
 TYPED_TEST(DiskShapePenetration, LargeHullsMatchReference) {
   using S = TypeParam;
   const fcl::Convex<S> hulls[] = {
-      convexOf<S>(fcl_disk_test::ringHull(6, 12, Vd(0.9, 0.7, 0.5))),
-      convexOf<S>(fcl_disk_test::subdividedCube(4, 0.6))};
+      fcl_disk_test::convexOf<S>(fcl_disk_test::ringHull(6, 12, Vd(0.9, 0.7, 0.5))),
+      fcl_disk_test::convexOf<S>(fcl_disk_test::subdividedCube(4, 0.6))};
   Random rng(19);
   for (const fcl::Convex<S>& hull : hulls) {
     int intersecting = 0;
