@@ -88,6 +88,13 @@ struct ConvexFace {
 struct ConvexHullEdge {
   int from, to;
   int face_a = -1, face_b = -1;
+  /// The arc of directions -w where it is the hull's support, from n1 to n2 =
+  /// cos alpha n1 + sin alpha m (its faces' outward normals), and the angle it
+  /// is widened by (ConvexTraits::edgeArcCannotBeat); `prunable` where that
+  /// arc is known: two faces, both well conditioned, not back to back.
+  bool prunable = false;
+  Vec3 n1{Vec3::Zero()}, n2{Vec3::Zero()}, m{Vec3::Zero()};
+  double cos_alpha = 1.0, sin_alpha = 0.0, widening = 0.0;
 };
 
 /// A face's edge from its vertex i to the next, with what the nearest-feature
@@ -502,6 +509,24 @@ struct ConvexTarget {
     }
   }
 
+  /// An edge's arc of directions from its two faces (ConvexHullEdge).
+  static void setEdgeArc(const ConvexGeometry& geometry, ConvexHullEdge* edge) {
+    const ConvexFace& face_a = geometry.faces[std::size_t(edge->face_a)];
+    const ConvexFace& face_b = geometry.faces[std::size_t(edge->face_b)];
+    edge->n1 = face_a.unit_normal, edge->n2 = face_b.unit_normal;
+    edge->cos_alpha = edge->n1.dot(edge->n2);
+    const Vec3 m_raw = edge->n2 - edge->cos_alpha * edge->n1;
+    edge->sin_alpha = m_raw.norm();
+    if (edge->sin_alpha > 0.0) edge->m = m_raw / edge->sin_alpha;
+    const double smallest_face = std::min(face_a.radius, face_b.radius);
+    if (smallest_face > 0.0) {
+      edge->widening = kEdgeArcMargin + 2.0 * geometry.face_thickness / smallest_face;
+    }
+    constexpr double kBackToBack = 1e-6;  // 1 + cos alpha: the arc is nearly a half circle
+    edge->prunable = face_a.well_conditioned && face_b.well_conditioned && smallest_face > 0.0 &&
+                     edge->cos_alpha > kBackToBack - 1.0;
+  }
+
   /// The hull's edges with their faces (ConvexGeometry::hull_edges), built on
   /// first use: the faces' edges as sorted (smaller, larger vertex) keys.
   static const std::vector<ConvexHullEdge>& hullEdgesOf(const fcl::Convex<S>& shape,
@@ -526,6 +551,7 @@ struct ConvexTarget {
       ConvexHullEdge edge{int(keys[i].first >> 32), int(keys[i].first & 0xffffffffu)};
       if (end - i == 2 && keys[i].second != keys[i + 1].second) {
         edge.face_a = keys[i].second, edge.face_b = keys[i + 1].second;
+        setEdgeArc(geometry, &edge);
       }
       edges.push_back(edge);
       i = end;
@@ -990,8 +1016,7 @@ struct ConvexTraits {
       const Vec3 from = vertex(edge.from), along = vertex(edge.to) - from;
       const double length = ConvexTarget<S>::safeNorm(along);
       if (!(length > 0.0)) continue;
-      if (edgeArcCannotBeat(geometry, edge, disk, orthonormal_disk, from,
-                            directions->pruningBound())) {
+      if (edgeArcCannotBeat(edge, disk, orthonormal_disk, from, directions->pruningBound())) {
         continue;
       }
       FeaturePointBound<Search> bounded{disk, from, *directions, geometry.probes};
@@ -1069,39 +1094,28 @@ struct ConvexTraits {
   /// False (the edge is searched) where that does not hold: an edge of one or
   /// three faces, faces too thin for their normals, faces back to back, or no
   /// finite bound yet.
-  static bool edgeArcCannotBeat(const ConvexGeometry& geometry, const ConvexHullEdge& edge,
-                                const DiskInShape& disk, bool orthonormal_disk, const Vec3& a,
-                                double bound) {
-    if (edge.face_a < 0 || !(bound < std::numeric_limits<double>::infinity())) return false;
-    const ConvexFace& face_a = geometry.faces[std::size_t(edge.face_a)];
-    const ConvexFace& face_b = geometry.faces[std::size_t(edge.face_b)];
-    if (!(face_a.well_conditioned && face_b.well_conditioned)) return false;
-    const Vec3& n1 = face_a.unit_normal;
-    const Vec3& n2 = face_b.unit_normal;
-    const double cos_alpha = n1.dot(n2);
-    constexpr double kBackToBack = 1e-6;  // 1 + cos alpha: the arc is nearly a half circle
-    if (!(cos_alpha > kBackToBack - 1.0)) return false;
-    const Vec3 m_raw = n2 - cos_alpha * n1;
-    const double sin_alpha = m_raw.norm();
-    const Vec3 m = sin_alpha > 0.0 ? Vec3(m_raw / sin_alpha) : Vec3::Zero();
-    // The sinusoid A cos t + B sin t on [0, alpha], ends start and end: its
-    // least value and its largest magnitude there.
-    const auto slope_at_end = [&](double A, double B) { return B * cos_alpha - A * sin_alpha; };
+  static bool edgeArcCannotBeat(const ConvexHullEdge& edge, const DiskInShape& disk,
+                                bool orthonormal_disk, const Vec3& a, double bound) {
+    if (!edge.prunable || !(bound < std::numeric_limits<double>::infinity())) return false;
+    // The sinusoid A cos t + B sin t on [0, alpha]: its least value and its
+    // largest magnitude come from its ends and its slopes' signs there.
+    const auto slope_at_end = [&](double A, double B) {
+      return B * edge.cos_alpha - A * edge.sin_alpha;
+    };
     const Vec3 d = disk.c - a;
-    const double A = -n1.dot(d), B = -m.dot(d);
-    double least_linear = std::min(A, -n2.dot(d));
-    if (B <= 0.0 && slope_at_end(A, B) >= 0.0) least_linear = -std::hypot(A, B);
+    const double A = -edge.n1.dot(d), B = -edge.m.dot(d);
+    double least_linear = std::min(A, -edge.n2.dot(d));
+    if (B <= 0.0 && slope_at_end(A, B) >= 0.0) least_linear = -std::sqrt(A * A + B * B);
     double in_plane = 0.0;  // a lower bound of |P w| on the arc
     if (orthonormal_disk) {
-      const double A_n = -n1.dot(disk.n), B_n = -m.dot(disk.n);
-      double most_normal = std::max(std::abs(A_n), std::abs(n2.dot(disk.n)));
-      if ((B_n >= 0.0) != (slope_at_end(A_n, B_n) > 0.0)) most_normal = std::hypot(A_n, B_n);
+      const double A_n = -edge.n1.dot(disk.n), B_n = -edge.m.dot(disk.n);
+      double most_normal = std::max(std::abs(A_n), std::abs(edge.n2.dot(disk.n)));
+      if ((B_n >= 0.0) != (slope_at_end(A_n, B_n) > 0.0)) {
+        most_normal = std::sqrt(A_n * A_n + B_n * B_n);
+      }
       in_plane = std::sqrt(std::max(0.0, 1.0 - most_normal * most_normal));
     }
-    const double smallest_face = std::min(face_a.radius, face_b.radius);
-    const double widening =
-        kEdgeArcMargin + (smallest_face > 0.0 ? 2.0 * geometry.face_thickness / smallest_face : 1.0);
-    const double lower = least_linear + disk.r * in_plane - widening * (d.norm() + disk.r);
+    const double lower = least_linear + disk.r * in_plane - edge.widening * (d.norm() + disk.r);
     return lower > bound;
   }
 };
