@@ -163,7 +163,8 @@ struct ConvexGeometry {
   mutable std::array<Vec3, 14> probes{};
   mutable bool hull_edges_built = false;
 
-  /// The heap memory it holds, in bytes.
+  /// The heap memory it holds when computed, in bytes (hull_edges, built
+  /// later and only for contacts, is not counted).
   std::size_t bytes() const {
     const auto of = [](const auto& list) { return list.capacity() * sizeof(list[0]); };
     return of(faces) + of(edges) + of(triangles) + of(clusters) + of(neighbour_start) +
@@ -556,15 +557,14 @@ struct ConvexTarget {
       edges.push_back(edge);
       i = end;
     }
-    for (int k = 0; k < 14; ++k) {
-      // k < 6: +-x, +-y, +-z; then the 8 diagonals (+-1, +-1, +-1).
-      const Vec3 direction = k < 6 ? Vec3((k / 2 == 0) - 0.0, (k / 2 == 1) - 0.0, (k / 2 == 2) - 0.0) *
-                                         (k % 2 == 0 ? 1.0 : -1.0)
-                                   : Vec3((k - 6) & 1 ? -1.0 : 1.0, (k - 6) & 2 ? -1.0 : 1.0,
-                                          (k - 6) & 4 ? -1.0 : 1.0);
+    static const std::array<Vec3, 14> kProbeDirections = {
+        Vec3(1, 0, 0),   Vec3(-1, 0, 0),  Vec3(0, 1, 0),   Vec3(0, -1, 0),  Vec3(0, 0, 1),
+        Vec3(0, 0, -1),  Vec3(1, 1, 1),   Vec3(1, 1, -1),  Vec3(1, -1, 1),  Vec3(1, -1, -1),
+        Vec3(-1, 1, 1),  Vec3(-1, 1, -1), Vec3(-1, -1, 1), Vec3(-1, -1, -1)};
+    for (std::size_t k = 0; k < kProbeDirections.size(); ++k) {
       Eigen::Index extreme = 0;
-      (geometry.points * direction).maxCoeff(&extreme);
-      geometry.probes[std::size_t(k)] = geometry.points.row(extreme).transpose();
+      (geometry.points * kProbeDirections[k]).maxCoeff(&extreme);
+      geometry.probes[k] = geometry.points.row(extreme).transpose();
     }
     geometry.hull_edges_built = true;
     return edges;
