@@ -992,26 +992,49 @@ struct ConvexTraits {
     const std::vector<ConvexHullEdge>& hull_edges =
         ConvexTarget<S>::hullEdgesOf(*target.convex, geometry);
     const auto vertex = [&](int index) { return target.points.row(index).transpose().eval(); };
-    // A face is the hull's support along its outward normal -w: w = -normal.
-    for (const ConvexFace& face : target.faces) {
+    const double rho = directions->inflation();
+    // A face is the hull's support along its outward normal -w: w = -normal,
+    // where F >= h_disk(-normal) + offset + rho (its plane through its first
+    // vertex), computed for every face at once, before any face's bound.
+    const auto normals = target.planes.template leftCols<3>();
+    const Eigen::ArrayXd along_u = (normals * disk.u).array(), along_v = (normals * disk.v).array();
+    const Eigen::ArrayXd face_bounds = target.planes.col(3).array() - (normals * disk.c).array() +
+                                       disk.r * (along_u.square() + along_v.square()).sqrt() + rho;
+    for (std::size_t f = 0; f < target.faces.size(); ++f) {
+      if (face_bounds[Eigen::Index(f)] > directions->pruningBound()) continue;
+      const ConvexFace& face = target.faces[f];
       FeaturePointBound<Search>{disk, vertex(target.list[face.start]), *directions, geometry.probes}
           .push_one(-face.unit_normal);
     }
     // A vertex s's candidates (addVertexCandidates): w along b - s for the rim
     // points b nearest and farthest s, with the sign whose disk support point
-    // is b ((b - c) . w > 0), where F(w) = h_disk(w) - w.s is stationary.
+    // is b ((b - c) . w > 0), where F(w) = h_disk(w) - w.s is stationary. There
+    // h_disk(w) = w.b, so F(w) >= w.(b - s) + rho = +-|b - s| + rho: + for the
+    // farthest, and for the nearest where s's foot lies within the rim.
+    // (The decomposition b - s = (r - |radial|) radial / |radial| - height n
+    // needs orthonormal axes; else only the probes bound.)
+    const bool orthonormal_disk = isOrthonormal(disk);
+    constexpr double kInfinity = std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < target.points.rows(); ++i) {
-      FeaturePointBound<Search> bounded{disk, vertex(int(i)), *directions, geometry.probes};
-      const Vec2 radial = disk.inPlane(bounded.point - disk.c);
+      const Vec3 s_point = vertex(int(i));
+      const Vec3 from_centre = s_point - disk.c;
+      const Vec2 radial = disk.inPlane(from_centre);
       const double length = radial.norm();
       if (!(length > 0.0)) continue;
+      const double height = from_centre.dot(disk.n), bound = directions->pruningBound();
+      const double near_gap = disk.r - length;  // the nearest rim point's, along the radial
+      const double near_bound =
+          near_gap >= 0.0 ? std::sqrt(height * height + near_gap * near_gap) + rho : -kInfinity;
+      const double far_bound =
+          std::sqrt(height * height + (disk.r + length) * (disk.r + length)) + rho;
+      if (orthonormal_disk && near_bound > bound && far_bound > bound) continue;
+      FeaturePointBound<Search> bounded{disk, s_point, *directions, geometry.probes};
       const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
       for (const Vec3& offset : {rim_offset, Vec3(-rim_offset)}) {
         const Vec3 w = disk.c + offset - bounded.point;
         bounded.push_one(offset.dot(w) >= 0.0 ? w : Vec3(-w));
       }
     }
-    const bool orthonormal_disk = isOrthonormal(disk);
     for (const ConvexHullEdge& edge : hull_edges) {
       const Vec3 from = vertex(edge.from), along = vertex(edge.to) - from;
       const double length = ConvexTarget<S>::safeNorm(along);
