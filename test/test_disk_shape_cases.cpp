@@ -858,7 +858,7 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
   std::vector<std::shared_ptr<std::vector<Vector3d>>> vertex_lists(kHulls);
   for (int h = 0; h < kHulls; ++h) {
     const double size = 0.5 + 0.01 * h;
-    const int per_ring = h % 4 == 0 ? 16 : 5 + h % 7;  // 130 vertices, or 32..82
+    const int per_ring = h % 4 == 0 ? 16 : 5 + h % 7;  // 130 vertices, or 32..68
     hulls.push_back(convexOf(ringHull(h % 4 == 0 ? 8 : 6, per_ring,
                                       Vector3d(size, 0.8 * size, 0.6 * size)),
                              &vertex_lists[h]));
