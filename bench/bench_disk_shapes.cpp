@@ -54,7 +54,7 @@
 // Hulls in turn: disk_hulls_in_turn/<H>/<variant>/double, H Convex hulls of
 // 40 random points on the sphere of radius 0.45, the pool's case k against
 // hull k % H: a scene's hulls queried one after another, as a broadphase
-// visits them (each thread keeps the geometry of 64 hulls).
+// visits them (each thread keeps the geometry of up to 128 hulls).
 //
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_shapes --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
@@ -334,7 +334,7 @@ void benchHull(benchmark::State& state, int vertex_count, Query q) {
 }
 
 /// The hull counts of the disk_hulls_in_turn benchmarks.
-constexpr int kHullCounts[] = {1, 8, 64, 96, 128};
+constexpr int kHullCounts[] = {1, 8, 64, 96, 128, 192};
 
 /// kPoolSize cases against `hull_count` Convex hulls of 40 random points on a
 /// sphere, case k against hull k % hull_count: the hulls queried in turn.

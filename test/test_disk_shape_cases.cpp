@@ -848,12 +848,10 @@ std::shared_ptr<fcl::Convexd> convexOf(const HullLists& lists,
 }
 
 // Each thread keeps the geometry of the hulls it queries (ConvexGeometryCache):
-// queried in turn, 100 hulls (more than the cache holds; small and large ones)
-// give bit for bit the answers each gives queried alone, and a hull whose
-// shared vertex list is changed in place, at the same address, answers for
-// its new vertices.
+// queried in turn, 160 hulls (more than the cache holds; small and large ones)
+// give bit for bit the answers each gives queried alone.
 TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
-  constexpr int kHulls = 100, kPoses = 12;
+  constexpr int kHulls = 160, kPoses = 12;
   std::vector<std::shared_ptr<fcl::Convexd>> hulls;
   std::vector<std::shared_ptr<std::vector<Vector3d>>> vertex_lists(kHulls);
   for (int h = 0; h < kHulls; ++h) {
@@ -889,18 +887,29 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
       }
     }
   }
-  // Hull 0, just queried, moved in place by 0.25 along x: as a new hull built
-  // at the moved vertices.
-  query(*hulls[0], 0);
-  for (Vector3d& v : *vertex_lists[0]) v.x() += 0.25;
-  std::shared_ptr<std::vector<Vector3d>> unused;
-  HullLists moved = ringHull(8, 16, Vector3d(0.5, 0.4, 0.3));
+}
+
+// A hull whose shared vertex list is changed in place, at the same address,
+// answers for its new vertices: its cached geometry (kept, the cache having
+// room for it) is not reused.
+TEST(DiskShapeCases, ConvexHullChangedInPlaceIsRecomputed) {
+  std::shared_ptr<std::vector<Vector3d>> vertices, unused;
+  const HullLists lists = ringHull(8, 16, Vector3d(0.5, 0.4, 0.3));
+  const auto hull = convexOf(lists, &vertices);
+  HullLists moved = lists;
   for (Vector3d& v : moved.vertices) v.x() += 0.25;
   const auto fresh = convexOf(moved, &unused);
-  for (int pose = 0; pose < kPoses; ++pose) {
-    const auto changed = query(*hulls[0], pose);
-    EXPECT_EQ(changed.distance, query(*fresh, pose).distance) << "pose " << pose;
-    EXPECT_EQ(changed.p_W_shape, query(*fresh, pose).p_W_shape) << "pose " << pose;
+  const Transform3d X_WS = at(Vector3d(0.1, -0.2, 0.3), Vector3d(1, 2, 3));
+  const auto query = [&](const fcl::Convexd& convex, const Vector3d& centre) {
+    return fcl_disk::diskShapeDistance(0.4, at(centre, Vector3d(1, -1, 2)), convex, X_WS);
+  };
+  const Vector3d centres[] = {{0.9, 0.2, 0.3}, {-0.4, 0.8, 0.1}, {0.2, -0.3, 1.0}};
+  for (const Vector3d& centre : centres) query(*hull, centre);
+  for (Vector3d& v : *vertices) v.x() += 0.25;
+  for (const Vector3d& centre : centres) {
+    const auto changed = query(*hull, centre), expected = query(*fresh, centre);
+    EXPECT_EQ(changed.distance, expected.distance);
+    EXPECT_EQ(changed.p_W_shape, expected.p_W_shape);
   }
 }
 

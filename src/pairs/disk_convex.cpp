@@ -178,10 +178,10 @@ struct ConvexGeometry {
 /// geometry of (ConvexGeometryCache): a planner's scene holds many hulls and a
 /// broadphase queries those near a disk in turn, and a hull whose geometry was
 /// dropped costs far more than its query (40 vertices, 76 faces: ~86k
-/// instructions against ~3k; docs/disk_shape_distance.md, section 4). 64 hulls
-/// of 40 vertices hold ~3 MB, of 100 vertices ~11 MB; hulls of 1000 vertices
-/// (~0.6 MB each) stop at the budget.
-constexpr std::size_t kMaxCachedHulls = 64;
+/// instructions against ~3k; docs/disk_shape_distance.md, section 4). 128
+/// hulls of 40 vertices hold ~6 MB; hulls of 100 vertices (~0.17 MB each) stop
+/// at the budget at ~96, of 1000 vertices (~0.6 MB) at ~27.
+constexpr std::size_t kMaxCachedHulls = 128;
 constexpr std::size_t kCachedHullBytes = std::size_t(16) << 20;
 
 /// The geometry of up to kMaxCachedHulls hulls this thread queried, each with
