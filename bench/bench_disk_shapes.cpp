@@ -299,6 +299,17 @@ std::size_t slotOf(const int (&values)[N], int value) {
   return std::size_t(std::find(std::begin(values), std::end(values), value) - std::begin(values));
 }
 
+/// A case of a disk at X_WD (and the flat cylinder at its pose) against `hull` at X_WS.
+void addHullCase(const fcl::Transform3<double>& X_WD,
+                 const std::shared_ptr<fcl::CollisionGeometry<double>>& hull,
+                 const fcl::Transform3<double>& X_WS, Pool<double>* pool) {
+  pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
+      std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
+  pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
+      std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
+  pool->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(hull, X_WS));
+}
+
 /// kPoolSize cases of a disk (and the flat cylinder at its pose) at random
 /// poses against `hulls`, case k against hull k % hulls.size() at a random pose.
 std::unique_ptr<Pool<double>> hullCases(
@@ -307,12 +318,7 @@ std::unique_ptr<Pool<double>> hullCases(
   auto pool = std::make_unique<Pool<double>>();
   for (std::size_t k = 0; k < kPoolSize; ++k) {
     const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
-    pool->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
-        std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
-    pool->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
-        std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
-    pool->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(
-        hulls[k % hulls.size()], dsc::detail::randomPose(random)));
+    addHullCase(X_WD, hulls[k % hulls.size()], dsc::detail::randomPose(random), pool.get());
   }
   return pool;
 }
@@ -352,45 +358,33 @@ const Pool<double>& inTurnPool(int hull_count) {
   return *pool;
 }
 
-/// Intersecting cases for the contact benchmarks: `count` random poses of a
-/// disk and hullPool(vertex_count)'s hull (the same hull) that intersect.
-struct ContactCases {
-  std::vector<std::unique_ptr<fcl::CollisionObject<double>>> disk, flat_cylinder, shape;
-};
-
-const ContactCases& contactCases(int vertex_count) {
-  static std::vector<std::unique_ptr<ContactCases>> all(std::size(kHullSizes));
-  const std::size_t slot = slotOf(kHullSizes, vertex_count);
-  if (!all[slot]) {
-    const Pool<double>& hulls = hullPool(vertex_count);
-    const auto& hull = *static_cast<const fcl::Convex<double>*>(
-        hulls.shape[0]->collisionGeometry().get());
+/// kContactCases random poses of a disk and hullPool(vertex_count)'s hull
+/// (the same hull) that intersect, for the contact benchmarks.
+const Pool<double>& contactCases(int vertex_count) {
+  static std::vector<std::unique_ptr<Pool<double>>> all(std::size(kHullSizes));
+  auto& cases = all[slotOf(kHullSizes, vertex_count)];
+  if (!cases) {
+    const auto hull = std::const_pointer_cast<fcl::CollisionGeometry<double>>(
+        hullPool(vertex_count).shape[0]->collisionGeometry());
+    const auto& convex = *static_cast<const fcl::Convex<double>*>(hull.get());
     fcl_disk_test::Random random(kSeed + 31 * std::uint64_t(vertex_count));
-    auto cases = std::make_unique<ContactCases>();
+    cases = std::make_unique<Pool<double>>();
     while (cases->disk.size() < kContactCases) {
       const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
       const fcl::Transform3<double> X_WS = dsc::detail::randomPose(random);
-      if (!fcl_disk::diskShapeIntersect(double(dsc::kDiskRadius), X_WD, hull, X_WS,
-                                        static_cast<fcl_disk::DiskContact<double>*>(nullptr))) {
-        continue;
+      if (fcl_disk::diskShapeIntersect(double(dsc::kDiskRadius), X_WD, convex, X_WS,
+                                       static_cast<fcl_disk::DiskContact<double>*>(nullptr))) {
+        addHullCase(X_WD, hull, X_WS, cases.get());
       }
-      cases->disk.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::make_shared<fcl_disk::Disk<double>>(dsc::kDiskRadius), X_WD));
-      cases->flat_cylinder.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::make_shared<fcl::Cylinder<double>>(dsc::kDiskRadius, 0.0), X_WD));
-      cases->shape.push_back(std::make_unique<fcl::CollisionObject<double>>(
-          std::const_pointer_cast<fcl::CollisionGeometry<double>>(hulls.shape[0]->collisionGeometry()),
-          X_WS));
     }
-    all[slot] = std::move(cases);
   }
-  return *all[slot];
+  return *cases;
 }
 
 /// fcl::collide with one contact asked (its depth and normal) on the
 /// intersecting cases in turn: the disk, or the flat cylinder under libccd's EPA.
 void benchHullContacts(benchmark::State& state, int vertex_count, bool flat_cylinder) {
-  const ContactCases& cases = contactCases(vertex_count);
+  const Pool<double>& cases = contactCases(vertex_count);
   const fcl::CollisionRequest<double> request(1, /*enable_contact=*/true);
   std::size_t i = 0;
   double depths = 0.0;

@@ -465,28 +465,41 @@ struct ConvexTarget {
 
   /// ConvexGeometry's face graph (faces sharing an edge: the faces' edges
   /// sorted by their vertex pair, as 64-bit keys) and the climb's start faces.
-  static void buildFaceGraph(const std::vector<int>& list, ConvexGeometry* geometry) {
-    const std::vector<ConvexFace>& faces = geometry->faces;
-    const auto key = [](int high, int low) {
-      return std::uint64_t(std::uint32_t(high)) << 32 | std::uint32_t(low);
-    };
-    std::vector<std::pair<std::uint64_t, int>> edges;  // (smaller, larger vertex), face
-    edges.reserve(geometry->edges.size());
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      const int* index = &list[faces[f].start];
-      for (int i = 0; i < faces[f].count; ++i) {
-        const int from = index[i], to = index[i + 1 < faces[f].count ? i + 1 : 0];
-        edges.emplace_back(key(std::min(from, to), std::max(from, to)), int(f));
+  /// Two 32-bit indices as one sortable 64-bit key.
+  static std::uint64_t pairKey(int high, int low) {
+    return std::uint64_t(std::uint32_t(high)) << 32 | std::uint32_t(low);
+  }
+
+  /// Every face's edges as (smaller, larger vertex) keys with their face,
+  /// sorted: the faces sharing an edge are adjacent.
+  static std::vector<std::pair<std::uint64_t, int>> sortedFaceEdges(
+      const std::vector<int>& list, const ConvexGeometry& geometry) {
+    std::vector<std::pair<std::uint64_t, int>> edges;
+    edges.reserve(geometry.edges.size());
+    for (std::size_t f = 0; f < geometry.faces.size(); ++f) {
+      const int* index = &list[geometry.faces[f].start];
+      const int count = geometry.faces[f].count;
+      for (int i = 0; i < count; ++i) {
+        const int from = index[i], to = index[i + 1 < count ? i + 1 : 0];
+        edges.emplace_back(pairKey(std::min(from, to), std::max(from, to)), int(f));
       }
     }
     std::sort(edges.begin(), edges.end());
+    return edges;
+  }
+
+  static void buildFaceGraph(const std::vector<int>& list, ConvexGeometry* geometry) {
+    const std::vector<ConvexFace>& faces = geometry->faces;
+    const std::vector<std::pair<std::uint64_t, int>> edges = sortedFaceEdges(list, *geometry);
     std::vector<std::uint64_t> pairs;  // (face, neighbour), both ways
     for (std::size_t i = 0; i < edges.size();) {
       std::size_t end = i + 1;
       while (end < edges.size() && edges[end].first == edges[i].first) ++end;
       for (std::size_t a = i; a < end; ++a) {
         for (std::size_t b = i; b < end; ++b) {
-          if (edges[a].second != edges[b].second) pairs.push_back(key(edges[a].second, edges[b].second));
+          if (edges[a].second != edges[b].second) {
+            pairs.push_back(pairKey(edges[a].second, edges[b].second));
+          }
         }
       }
       i = end;
@@ -529,21 +542,12 @@ struct ConvexTarget {
   }
 
   /// The hull's edges with their faces (ConvexGeometry::hull_edges), built on
-  /// first use: the faces' edges as sorted (smaller, larger vertex) keys.
+  /// first use from sortedFaceEdges.
   static const std::vector<ConvexHullEdge>& hullEdgesOf(const fcl::Convex<S>& shape,
                                                         const ConvexGeometry& geometry) {
     if (geometry.hull_edges_built) return geometry.hull_edges;
-    std::vector<std::pair<std::uint64_t, int>> keys;  // (vertex pair, face)
-    const std::vector<int>& list = shape.getFaces();
-    for (std::size_t f = 0; f < geometry.faces.size(); ++f) {
-      const int* index = &list[geometry.faces[f].start];
-      const int count = geometry.faces[f].count;
-      for (int i = 0; i < count; ++i) {
-        const auto from = std::uint32_t(index[i]), to = std::uint32_t(index[(i + 1) % count]);
-        keys.emplace_back(std::uint64_t(std::min(from, to)) << 32 | std::max(from, to), int(f));
-      }
-    }
-    std::sort(keys.begin(), keys.end());
+    const std::vector<std::pair<std::uint64_t, int>> keys =
+        sortedFaceEdges(shape.getFaces(), geometry);
     std::vector<ConvexHullEdge>& edges = geometry.hull_edges;
     edges.clear();
     for (std::size_t i = 0; i < keys.size();) {
@@ -1060,15 +1064,22 @@ struct ConvexTraits {
     Search& search;
     const std::array<Vec3, 14>& probes;
 
+    /// The least and greatest of unit.p over the points.
+    std::pair<double, double> extentAlong(const Vec3& unit) const {
+      double least = unit.dot(point), most = least;
+      for (const Vec3& probe : probes) {
+        const double along = unit.dot(probe);
+        least = std::min(least, along), most = std::max(most, along);
+      }
+      return {least, most};
+    }
     /// w alone (the feature can be the support along -w only).
     void push_one(const Vec3& w) {
       const double length = w.norm();
       const double bound = search.pruningBound();
       if (length > 0.0 && bound < std::numeric_limits<double>::infinity()) {
         const Vec3 unit = w / length;
-        double least = unit.dot(point);
-        for (const Vec3& probe : probes) least = std::min(least, unit.dot(probe));
-        if (disk.support(unit) - least + search.inflation() > bound) return;
+        if (disk.support(unit) - extentAlong(unit).first + search.inflation() > bound) return;
       }
       search.push_one(w);
     }
@@ -1077,11 +1088,7 @@ struct ConvexTraits {
       const double bound = search.pruningBound();
       if (length > 0.0 && bound < std::numeric_limits<double>::infinity()) {
         const Vec3 unit = w / length;
-        double least = unit.dot(point), most = least;  // over the points: w.p
-        for (const Vec3& probe : probes) {
-          const double along = unit.dot(probe);
-          least = std::min(least, along), most = std::max(most, along);
-        }
+        const auto [least, most] = extentAlong(unit);
         const double rho = search.inflation();
         if (disk.support(unit) - least + rho > bound && disk.support(-unit) + most + rho > bound) {
           return;
