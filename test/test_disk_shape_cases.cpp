@@ -913,6 +913,44 @@ TEST(DiskShapeCases, ConvexHullChangedInPlaceIsRecomputed) {
   }
 }
 
+// The same beyond the cache's capacity: with more hulls than it keeps
+// queried first, most new hulls are kept only in the slot of the last hull not
+// kept, which a hull queried again in a row hits; changed in place there, it
+// is recomputed too. Sixteen hulls, each queried, changed and queried again.
+TEST(DiskShapeCases, ConvexHullChangedInPlaceBeyondTheCacheIsRecomputed) {
+  std::vector<std::shared_ptr<fcl::Convexd>> fillers;
+  std::shared_ptr<std::vector<Vector3d>> unused;
+  const Transform3d X_WS = at(Vector3d(0.1, -0.2, 0.3), Vector3d(1, 2, 3));
+  const auto query = [&](const fcl::Convexd& convex, const Vector3d& centre) {
+    return fcl_disk::diskShapeDistance(0.4, at(centre, Vector3d(1, -1, 2)), convex, X_WS);
+  };
+  for (int h = 0; h < 200; ++h) {
+    fillers.push_back(convexOf(ringHull(4, 6, Vector3d(0.5, 0.4, 0.3 + 0.001 * h)), &unused));
+    query(*fillers.back(), Vector3d(0.9, 0.2, 0.3));
+  }
+  const Vector3d centres[] = {{0.9, 0.2, 0.3}, {-0.4, 0.8, 0.1}, {0.2, -0.3, 1.0}};
+  // Every hull stays alive, so that none is built at an address a slot keeps.
+  std::vector<std::shared_ptr<fcl::Convexd>> alive;
+  for (int h = 0; h < 16; ++h) {
+    const HullLists lists = ringHull(8, 16, Vector3d(0.5, 0.4, 0.3 + 0.01 * h));
+    HullLists moved = lists;
+    for (Vector3d& v : moved.vertices) v.x() += 0.25;
+    std::vector<fcl_disk::DiskShapeDistanceResult<double>> expected;
+    alive.push_back(convexOf(moved, &unused));
+    for (const Vector3d& centre : centres) expected.push_back(query(*alive.back(), centre));
+    std::shared_ptr<std::vector<Vector3d>> vertices;
+    alive.push_back(convexOf(lists, &vertices));
+    const fcl::Convexd& hull = *alive.back();
+    for (const Vector3d& centre : centres) query(hull, centre);
+    for (Vector3d& v : *vertices) v.x() += 0.25;
+    for (int i = 0; i < 3; ++i) {
+      const auto changed = query(hull, centres[i]);
+      EXPECT_EQ(changed.distance, expected[i].distance) << "hull " << h << " pose " << i;
+      EXPECT_EQ(changed.p_W_shape, expected[i].p_W_shape) << "hull " << h << " pose " << i;
+    }
+  }
+}
+
 TEST(DiskShapeCases, UncertainShapesGiveCostSourcesAsFcl) {
   // FCL (ShapeCollisionTraversalNode::leafTesting): occupied shapes give contacts
   // (and cost sources when asked); shapes that are neither occupied nor free

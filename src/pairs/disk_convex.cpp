@@ -190,10 +190,12 @@ constexpr std::size_t kCachedHullBytes = std::size_t(16) << 20;
 /// address, or one whose shared lists were changed in place, is recomputed.
 /// A new hull takes a free slot while the count and kCachedHullBytes allow;
 /// else one new hull in kCacheAdmission replaces a pseudo-random slot, and the
-/// others are computed into a slot of their own for the query: of hulls
-/// queried in turn, more of them than fit, those kept keep hitting (about as
-/// many hits as slots), where replacing the least recently used, or a random
-/// slot on every miss, would miss on nearly every query.
+/// others are computed into one slot of their own (kQuerySlot), kept until the
+/// next such hull: of hulls queried in turn, more of them than fit, those kept
+/// keep hitting (about as many hits as slots), where replacing the least
+/// recently used, or a random slot on every miss, would miss on nearly every
+/// query; and a hull queried many times in a row hits from its second query
+/// on, kept or not.
 constexpr std::uint64_t kCacheAdmission = 8;
 
 template <typename S>
@@ -205,7 +207,7 @@ struct ConvexGeometryCache {
     ConvexGeometry geometry;
     std::size_t bytes = 0;  ///< held by the three above
   };
-  /// The slot of a hull not kept, holding its geometry for its query only.
+  /// The slot of the last new hull not kept.
   static constexpr std::size_t kQuerySlot = kMaxCachedHulls;
   /// Each slot's hull address (never dereferenced; null while rebuilt), apart
   /// from the entries so that a lookup scans one short array.
@@ -218,10 +220,19 @@ struct ConvexGeometryCache {
   std::uint64_t new_hulls = 0;  ///< new hulls met with every slot in use
   std::size_t verified = kQuerySlot;  ///< the slot geometryOf() compared last
 
-  /// The slot keeping `shape`'s address, or `filled` (the last one compared first).
+  /// Whether `slot` holds a hull: a kept slot or kQuerySlot.
+  bool holds(std::size_t slot) const { return slot < filled || slot == kQuerySlot; }
+
+  /// What slotOf() returns for an address no slot keeps.
+  static constexpr std::size_t kNoSlot = kMaxCachedHulls + 1;
+
+  /// The slot keeping `shape`'s address (the last one compared first, then
+  /// kQuerySlot), or kNoSlot.
   std::size_t slotOf(const void* shape) const {
-    if (verified < filled && shapes[verified] == shape) return verified;
-    return std::size_t(std::find(shapes.begin(), shapes.begin() + filled, shape) - shapes.begin());
+    if (holds(verified) && shapes[verified] == shape) return verified;
+    if (shapes[kQuerySlot] == shape) return kQuerySlot;
+    const auto kept = std::find(shapes.begin(), shapes.begin() + filled, shape);
+    return kept != shapes.begin() + filled ? std::size_t(kept - shapes.begin()) : kNoSlot;
   }
 
   /// Where a new hull of `new_bytes` goes: a free slot while the count and the
@@ -297,7 +308,7 @@ struct ConvexTarget {
     std::size_t slot = cached.slotOf(&shape);
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
-    if (slot < cached.filled) {
+    if (cached.holds(slot)) {
       const auto& entry = cached.entries[slot];
       if (entry.face_count == shape.getFaceCount() && sameBytes(entry.vertices, vertices) &&
           sameBytes(entry.face_list, face_list)) {
@@ -308,7 +319,7 @@ struct ConvexTarget {
     ConvexGeometry geometry = computeGeometry(shape);
     const std::size_t bytes = geometry.bytes() + vertices.size() * sizeof(vertices[0]) +
                               face_list.size() * sizeof(int);
-    if (slot == cached.filled) slot = cached.slotForNewHull(bytes);
+    if (slot == ConvexGeometryCache<S>::kNoSlot) slot = cached.slotForNewHull(bytes);
     auto& entry = cached.entries[slot];
     const bool kept = slot != ConvexGeometryCache<S>::kQuerySlot;
     cached.shapes[slot] = nullptr;  // invalid while rebuilt
