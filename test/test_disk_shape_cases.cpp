@@ -429,6 +429,58 @@ TEST(DiskShapeCases, CapsuleConeAndEllipsoidOverlapsInClosedForm) {
   expectOverlapsInClosedForm<float>();
 }
 
+// Ellipsoid pairs in each of the closed form's cases (docs/disk_shape_distance.md,
+// section 4, "Ellipsoid"), in float and double, the disk's pose turned about the
+// world's z (both shapes' poses, so the answer does not move):
+//  * rim: a sphere of radius 0.5 as Ellipsoid(0.5, 0.5, 0.5) and a disk
+//    (r = 1) in the plane z = h centred at (D, 0, h), D > 1: the rim point
+//    nearest the centre is (D - 1, 0, h), at sqrt((D - 1)^2 + h^2) - 0.5;
+//  * face: Ellipsoid(0.3, 0.4, 0.2) under a disk in the plane z = 0.5 whose
+//    centre is over it: its top (0, 0, 0.2), 0.3 below the disk;
+//  * overlap, decided by the least level over the disk: Ellipsoid(2, 0.1, 0.1)
+//    and a disk (r = 1) in the plane y = 0 centred at (0.5, 0, 1.05). Its
+//    lowest point (0.5, 0, 0.05) is inside ((0.25)^2 + (0.5)^2 < 1), while its
+//    point nearest the centre is not: distance 0, at a common point.
+template <typename S>
+void expectEllipsoidCases() {
+  const double tolerance = std::is_same<S, float>::value ? 2e-6 : kExact;
+  const auto query = [&](const fcl::Ellipsoid<S>& ellipsoid, const Transform3d& X_WD,
+                         double turn) {
+    const Transform3d X_WW(Eigen::AngleAxisd(turn, Vector3d::UnitZ()));
+    return fcl_disk::diskShapeDistance(S(1), (X_WW * X_WD).cast<S>(), ellipsoid,
+                                       X_WW.cast<S>());
+  };
+  const fcl::Ellipsoid<S> sphere(S(0.5), S(0.5), S(0.5));
+  for (const double turn : {0.0, 0.7, 2.9}) {
+    SCOPED_TRACE(turn);
+    for (const double d : {1.6, 2.0, 3.5}) {
+      for (const double h : {-0.8, 0.0, 0.3, 1.2}) {
+        const auto rim = query(sphere, at({d, 0, h}), turn);
+        EXPECT_NEAR(rim.distance, std::hypot(d - 1.0, h) - 0.5, tolerance) << d << " " << h;
+        EXPECT_NEAR(double(rim.lower_bound), double(rim.distance), tolerance);
+      }
+    }
+    const auto face =
+        query(fcl::Ellipsoid<S>(S(0.3), S(0.4), S(0.2)), at({0.2, -0.1, 0.5}), turn);
+    EXPECT_NEAR(face.distance, 0.3, tolerance);
+    const auto overlap = query(fcl::Ellipsoid<S>(S(2), S(0.1), S(0.1)),
+                               at({0.5, 0, 1.05}, Vector3d::UnitY()), turn);
+    EXPECT_EQ(overlap.distance, S(0));
+    const Transform3d X_WW(Eigen::AngleAxisd(turn, Vector3d::UnitZ()));
+    const Vector3d common = X_WW.inverse() * overlap.p_W_disk.template cast<double>();
+    EXPECT_NEAR(common.y(), 0.0, tolerance);
+    EXPECT_LE((common - Vector3d(0.5, 0, 1.05)).norm(), 1.0 + tolerance);
+    EXPECT_LE(std::pow(common.x() / 2, 2) + std::pow(common.y() / 0.1, 2) +
+                  std::pow(common.z() / 0.1, 2),
+              1.0 + tolerance);
+  }
+}
+
+TEST(DiskShapeCases, EllipsoidRimFaceAndOverlapCases) {
+  expectEllipsoidCases<double>();
+  expectEllipsoidCases<float>();
+}
+
 // A needle: an ellipsoid with one semi-axis of 0.1 and two far below any
 // scene length (1e-8 .. 1e-140), crossing or passing a disk in random tilts.
 // Its projection's root t is then far below e_max^2: the secular iteration

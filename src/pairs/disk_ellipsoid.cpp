@@ -1,7 +1,11 @@
-// Disk - fcl::Ellipsoid: a common point where the disk's point nearest the
-// centre lies inside, else the generic solver with the ellipsoid's projection
-// (the root t of Eberly's secular equation by safeguarded Newton) and its
-// support.
+// Disk - fcl::Ellipsoid, in the ellipsoid's frame (lengths as given). Closed
+// forms first: a common point where the disk's point nearest the centre lies
+// inside; the face case; else Newton's method on the saddle point of the
+// Fenchel dual along the rim, certified by the duality gap, with the overlap
+// decided by the disk's least level where the dual cannot separate the pair.
+// Pairs these leave open (a flat ellipsoid, a rim iteration that does not
+// close) go to the generic solver with the ellipsoid's projection (the root t
+// of Eberly's secular equation by safeguarded Newton) and its support.
 // docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 
@@ -142,6 +146,201 @@ struct EllipsoidTarget {
   }
 };
 
+/// The rim iteration (ellipsoidAgainstRim) gives up, for the generic solver,
+/// after this many Newton steps on L: on the report's 2,000 cases it proves
+/// 1,339 pairs, 1,312 of them within 5 steps and all within 7.
+constexpr int kMaxRimSteps = 8;
+/// ... and when its certificate G(w / |w|) is still not positive after this
+/// many, which on the report's cases happens to 35 pairs that overlap (the
+/// dual optimum is then w = 0, where L is not smooth) and to 26 apart, all but
+/// one of which, run on, reach the step cap at a stationary point of the
+/// distance along the rim that is not its minimum: ellipsoidOverlap decides,
+/// and pairs apart are left to the generic solver.
+constexpr int kStepsToSeparate = 3;
+/// ellipsoidOverlap's Newton steps on its secular equation; undecided after
+/// (a pair touching to rounding).
+constexpr int kMaxOverlapSteps = 12;
+/// The first (dual) step is halved until F increases, at most this many times.
+constexpr int kMaxDualHalvings = 12;
+
+/// The face case (docs/disk_shape_distance.md, section 4, "Ellipsoid"): the
+/// ellipsoid's point extreme towards the disk's plane, on one side of it,
+/// projecting into the disk. `e` all > 0; `disk` orthonormal.
+LeafToDisk ellipsoidAgainstFace(const DiskInShape& disk, const Vec3& e, double scale) {
+  const double centre_height = -disk.n.dot(disk.c);  // the ellipsoid's centre over the plane
+  const double side = centre_height >= 0.0 ? 1.0 : -1.0;
+  const Vec3 e_n = e.cwiseProduct(disk.n);
+  const double reach = e_n.norm();  // h_E(n) = h_E(-n) = |E n|
+  const double height = std::abs(centre_height) - reach;
+  if (!(height > 0.0)) return LeafToDisk{};  // the plane cuts the ellipsoid
+  const Vec3 q = (-side / reach) * e.cwiseProduct(e_n);
+  const Vec2 s = disk.inPlane(q - disk.c);
+  if (!(s.squaredNorm() <= disk.r * disk.r)) return LeafToDisk{};
+  const Vec3 p = disk.point(s);
+  return certifiedOrBound(height, (q - p).norm(), p, q, scale);
+}
+
+/// Whether the disk meets the ellipsoid (docs/disk_shape_distance.md, section
+/// 4, "Ellipsoid"): the least of the level l(y) = sum (y_i / e_i)^2 over the
+/// disk, l(c + U s) = |b + A s|^2 (A = E^-1 U, b = E^-1 c), is at most 1. A
+/// trust-region problem in s, |s| <= r: the minimiser of the whole plane if it
+/// lies in the disk, else s(mu) = -(Q + mu I)^-1 g (Q = A^T A, g = A^T b) with
+/// |s(mu)| = r, found by Newton's method on 1 / |s(mu)| - 1 / r from mu = 0
+/// (which approaches the root from below, monotonically). Each step decides as
+/// soon as it can: r s / |s| is a disk point, so its level <= 1 proves an
+/// overlap (that point is common); l(s) + mu (|s|^2 - r^2) is the Lagrangian's
+/// minimum, a lower bound of the least level, so above 1 it proves the pair
+/// apart. `e` all > 0.
+struct OverlapVerdict {
+  enum Kind { undecided, overlap, apart } kind;
+  Vec3 common_point;
+};
+OverlapVerdict ellipsoidOverlap(const Vec3& e, const DiskInShape& disk) {
+  const Vec3 inverse_e = e.cwiseInverse();
+  const Vec3 b = disk.c.cwiseProduct(inverse_e);
+  const Vec3 a_u = disk.u.cwiseProduct(inverse_e), a_v = disk.v.cwiseProduct(inverse_e);
+  const double q_uu = a_u.squaredNorm(), q_uv = a_u.dot(a_v), q_vv = a_v.squaredNorm();
+  const Vec2 g(a_u.dot(b), a_v.dot(b));
+  const double r2 = disk.r * disk.r;
+  const auto level = [&](const Vec2& s) { return (b + s.x() * a_u + s.y() * a_v).squaredNorm(); };
+  double mu = 0.0;
+  for (int step = 0; step < kMaxOverlapSteps; ++step) {
+    const double m_uu = q_uu + mu, m_vv = q_vv + mu;
+    const double det = m_uu * m_vv - q_uv * q_uv;
+    if (!(det > 0.0)) break;
+    const Vec2 s = Vec2(q_uv * g.y() - m_vv * g.x(), q_uv * g.x() - m_uu * g.y()) / det;
+    const double s2 = s.squaredNorm();
+    if (mu == 0.0 && s2 <= r2) {
+      if (level(s) <= 1.0) return {OverlapVerdict::overlap, disk.point(s)};
+      return {OverlapVerdict::apart, Vec3::Zero()};
+    }
+    if (level(s) + mu * (s2 - r2) > 1.0) return {OverlapVerdict::apart, Vec3::Zero()};
+    const double length = std::sqrt(s2);
+    const Vec2 on_rim = s * (disk.r / length);
+    if (level(on_rim) <= 1.0) return {OverlapVerdict::overlap, disk.point(on_rim)};
+    // d|s|^2 / dmu = -2 s^T (Q + mu I)^-1 s.
+    const Vec2 t = Vec2(m_vv * s.x() - q_uv * s.y(), m_uu * s.y() - q_uv * s.x()) / det;
+    const double next = mu + s2 * (length / disk.r - 1.0) / s.dot(t);
+    if (!(next > mu)) break;
+    mu = next;
+  }
+  return {OverlapVerdict::undecided, Vec3::Zero()};
+}
+
+/// The symmetric positive definite M = I + (E^2 - q q^T) / a (a = |E w|,
+/// q = -E^2 w / a), the Hessian of |E w| + |w|^2 / 2, by its adjugate.
+struct DualCurvature {
+  Vec3 c0, c1, c2;  // the adjugate's rows
+  double det;
+  DualCurvature(const Vec3& e2, const Vec3& q, double a, const Vec3& rim_tangent,
+                double rim_weight) {
+    const double inv_a = 1.0 / a;
+    Mat3 m = (-inv_a) * q * q.transpose() + rim_weight * rim_tangent * rim_tangent.transpose();
+    for (int i = 0; i < 3; ++i) m(i, i) += 1.0 + e2[i] * inv_a;
+    c0 = m.col(1).cross(m.col(2));
+    c1 = m.col(2).cross(m.col(0));
+    c2 = m.col(0).cross(m.col(1));
+    det = m.col(0).dot(c0);
+  }
+  /// M^-1 b.
+  Vec3 solve(const Vec3& b) const { return Vec3(c0.dot(b), c1.dot(b), c2.dot(b)) / det; }
+};
+
+/// A separated pair that is not the face case, whose p* is therefore on the
+/// rim (docs/disk_shape_distance.md, section 4, "Ellipsoid"), from `rim`
+/// (unit, in-plane) and the dual start `w`. Newton's method on the saddle
+/// point of
+///   L(w, theta) = -|E w| - w.p(theta) - |w|^2 / 2,
+///   p(theta) = c + r (cos theta u + sin theta v):
+/// max over w of L is |p(theta) - E|^2 / 2 (the Fenchel dual of the point's
+/// distance), min over theta of that is d^2 / 2. Its gradient,
+/// (q - p - w, -w.p'), with q = -E^2 w / |E w| the ellipsoid's point least
+/// along w, vanishes at w* = q* - p*. L is smooth wherever w != 0, where the
+/// dual over the whole disk, F(w) = min_theta L = -|E w| - w.c - r |U^T w| -
+/// |w|^2 / 2, has a ridge along the disk's normal that Newton on F stalls
+/// against; only the first step is taken on F (the dual Newton step, halved
+/// until F increases), which gives w a length of the distance's order from
+/// any start. Every iterate is a feasible pair (p, q), |q - p| an upper bound,
+/// and G(w / |w|) = (-|E w| - w.c - r |U^T w|) / |w| (the certificate of docs
+/// section 2 along w) a lower bound: exact when they meet within
+/// kShapeGapTolerance of the scene. Else not exact (the generic solver
+/// answers), or a common point when p is found inside the ellipsoid.
+LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInShape& disk,
+                               Vec2 rim, Vec3 w, double scale) {
+  const Vec3 e2 = ellipsoid.e.cwiseProduct(ellipsoid.e);
+  const double tolerance = kShapeGapTolerance * scale;
+  // G(w) and F(w) at w; nullopt where |E w| or |U^T w| is 0.
+  struct Dual {
+    double a, b, g;
+    Vec2 beta;
+  };
+  const auto dual = [&](const Vec3& at) -> std::optional<Dual> {
+    Dual x;
+    x.a = std::sqrt(at.dot(e2.cwiseProduct(at)));
+    x.beta = disk.inPlane(at);
+    x.b = x.beta.norm();
+    if (!(x.a > 0.0 && x.b > 0.0)) return std::nullopt;
+    x.g = -x.a - at.dot(disk.c) - disk.r * x.b;
+    return x;
+  };
+  // The dual step on F, from w: -hess F = M + (r / b) t t^T (t the rim
+  // tangent at the disk's point most along w).
+  {
+    const std::optional<Dual> x = dual(w);
+    if (!x) return LeafToDisk{};
+    const Vec3 q = e2.cwiseProduct(w) * (-1.0 / x->a);
+    const Vec2 unit_beta = x->beta / x->b;
+    const Vec3 p = disk.point(disk.r * unit_beta);
+    const Vec3 tangent = unit_beta.x() * disk.v - unit_beta.y() * disk.u;
+    const DualCurvature curvature(e2, q, x->a, tangent, disk.r / x->b);
+    if (!(curvature.det > 0.0)) return LeafToDisk{};
+    const Vec3 delta = curvature.solve(q - p - w);
+    const double value = x->g - 0.5 * w.squaredNorm();
+    double length = 1.0;
+    for (int halving = 0;; ++halving) {
+      const Vec3 next = w + length * delta;
+      const std::optional<Dual> y = dual(next);
+      if (y && y->g - 0.5 * next.squaredNorm() >= value) {
+        w = next;
+        rim = y->beta / y->b;
+        break;
+      }
+      if (halving == kMaxDualHalvings) return LeafToDisk{};
+      length *= 0.5;
+    }
+  }
+  for (int step = 0;; ++step) {
+    const Vec3 e2_w = e2.cwiseProduct(w);
+    const double a = std::sqrt(w.dot(e2_w));
+    if (!(a > 0.0)) return LeafToDisk{};
+    const Vec3 q = e2_w * (-1.0 / a);
+    const Vec3 radial = rim.x() * disk.u + rim.y() * disk.v;
+    const Vec3 p = disk.c + disk.r * radial;
+    const double upper = (q - p).norm();
+    const double lower =
+        (-a - w.dot(disk.c) - disk.r * disk.inPlane(w).norm()) / w.norm();
+    if (upper - lower <= tolerance) return certifiedOrBound(lower, upper, p, q, scale);
+    if (!(lower > 0.0) && step == kStepsToSeparate) {
+      const OverlapVerdict verdict = ellipsoidOverlap(ellipsoid.e, disk);
+      return verdict.kind == OverlapVerdict::overlap ? meetingAt(verdict.common_point)
+                                                     : LeafToDisk{};
+    }
+    if (step == kMaxRimSteps) return LeafToDisk{};
+    // Newton: M dw + p' dtheta = q - p - w, p'.dw - w.(p - c) dtheta = -w.p'.
+    const Vec3 tangent = disk.r * (rim.x() * disk.v - rim.y() * disk.u);  // p'
+    const DualCurvature curvature(e2, q, a, tangent, 0.0);
+    if (!(curvature.det > 0.0)) return LeafToDisk{};
+    const Vec3 dw_residual = curvature.solve(q - p - w), dw_turn = curvature.solve(tangent);
+    const double turn = (tangent.dot(dw_residual) + w.dot(tangent)) /
+                        (tangent.dot(dw_turn) + disk.r * w.dot(radial));
+    if (!std::isfinite(turn)) return LeafToDisk{};
+    w += dw_residual - turn * dw_turn;
+    const Vec2 rotation = cayleyTurn(turn);
+    rim = Vec2(rotation.x() * rim.x() - rotation.y() * rim.y(),
+               rotation.x() * rim.y() + rotation.y() * rim.x());
+  }
+}
+
 template <typename S>
 struct EllipsoidTraits {
   static bool valid(const fcl::Ellipsoid<S>& ellipsoid) {
@@ -164,13 +363,38 @@ struct EllipsoidTraits {
   /// (distance 0). A separated pair has no closed form (the projection is a
   /// root of the secular equation): not exact, the generic solver answers.
   static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Ellipsoid<S>& ellipsoid,
-                               double /*scale*/) {
+                               double scale) {
     const Vec3 x = disk.point(disk.nearest(Vec3::Zero()));
     const EllipsoidTarget ellipsoid_target = target(ellipsoid);
     for (int i = 0; i < 3; ++i) {  // a flat axis holds only x_i = 0
       if (!(ellipsoid_target.e[i] > 0.0) && x[i] != 0.0) return LeafToDisk{};
     }
-    return ellipsoid_target.levelOnAxes(x) <= 1.0 ? meetingAt(x) : LeafToDisk{};
+    const double level = ellipsoid_target.levelOnAxes(x);
+    if (level <= 1.0) return meetingAt(x);
+    const Vec3& e = ellipsoid_target.e;
+    if (!(e.minCoeff() > 0.0)) return LeafToDisk{};
+    const LeafToDisk face = ellipsoidAgainstFace(disk, e, scale);
+    if (face.exact) return face;
+    // Start: the rim point towards where the ellipsoid comes nearest the
+    // disk's plane (the foot of its point extreme towards the plane, or of its
+    // centre where the plane cuts it), and w from it to its radial point on the
+    // ellipsoid.
+    const double centre_height = -disk.n.dot(disk.c);
+    const Vec3 e_n = e.cwiseProduct(disk.n);
+    const double reach = e_n.norm();
+    const Vec3 nearest_plane = std::abs(centre_height) > reach
+                                   ? Vec3((centre_height >= 0.0 ? -1.0 : 1.0) / reach *
+                                          e.cwiseProduct(e_n))
+                                   : Vec3::Zero();
+    const Vec2 towards = disk.inPlane(nearest_plane - disk.c);
+    const double towards_length = towards.norm();
+    if (!(towards_length > 0.0)) return LeafToDisk{};
+    const Vec2 rim = towards / towards_length;
+    const Vec3 rim_point = disk.point(disk.r * rim);
+    const double rim_level = ellipsoid_target.levelOnAxes(rim_point);
+    if (rim_level <= 1.0) return meetingAt(rim_point);
+    return ellipsoidAgainstRim(ellipsoid_target, disk, rim,
+                               rim_point * (1.0 / std::sqrt(rim_level)) - rim_point, scale);
   }
   /// The principal axes.
   template <typename Search>
