@@ -228,7 +228,8 @@ OverlapVerdict ellipsoidOverlap(const Vec3& e, const DiskInShape& disk) {
 }
 
 /// The symmetric positive definite M = I + (E^2 - q q^T) / a (a = |E w|,
-/// q = -E^2 w / a), the Hessian of |E w| + |w|^2 / 2, by its adjugate.
+/// q = -E^2 w / a), the Hessian of |E w| + |w|^2 / 2, plus
+/// rim_weight * t t^T (the disk's support's, for F), solved by its adjugate.
 struct DualCurvature {
   Vec3 c0, c1, c2;  // the adjugate's rows
   double det;
@@ -264,7 +265,7 @@ struct DualCurvature {
 /// and G(w / |w|) = (-|E w| - w.c - r |U^T w|) / |w| (the certificate of docs
 /// section 2 along w) a lower bound: exact when they meet within
 /// kShapeGapTolerance of the scene. Else not exact (the generic solver
-/// answers), or a common point when p is found inside the ellipsoid.
+/// answers), or the common point ellipsoidOverlap finds.
 LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInShape& disk,
                                Vec2 rim, Vec3 w, double scale) {
   const Vec3 e2 = ellipsoid.e.cwiseProduct(ellipsoid.e);
