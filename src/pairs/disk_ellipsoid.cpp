@@ -247,6 +247,24 @@ struct DualCurvature {
   Vec3 solve(const Vec3& b) const { return Vec3(c0.dot(b), c1.dot(b), c2.dot(b)) / det; }
 };
 
+/// The saddle step's M = I + (E^2 - q q^T) / a = D - q q^T / a,
+/// D = diag(1 + e_i^2 / a), solved by Sherman and Morrison:
+/// M^-1 x = a d o x + z (z.x) / sigma with d_i = 1 / (a + e_i^2),
+/// z = D^-1 q = -e2 o w o d and sigma = a - q^T D^-1 q, summed as
+/// sum e_i^2 w_i^2 d_i (> 0: no cancellation, using a^2 = sum e_i^2 w_i^2).
+struct SaddleCurvature {
+  Vec3 a_d, z;
+  double inverse_sigma;
+  SaddleCurvature(const Vec3& e2, const Vec3& w, double a) {
+    const Vec3 d = (Vec3::Constant(a) + e2).cwiseInverse();
+    z = -e2.cwiseProduct(w).cwiseProduct(d);
+    a_d = a * d;
+    inverse_sigma = 1.0 / (-z.dot(w));
+  }
+  /// M^-1 x.
+  Vec3 solve(const Vec3& x) const { return a_d.cwiseProduct(x) + z * (z.dot(x) * inverse_sigma); }
+};
+
 /// A separated pair that is not the face case, whose p* is therefore on the
 /// rim (docs/disk_shape_distance.md, section 4, "Ellipsoid"), from `rim`
 /// (unit, in-plane) and the dual start `w`. Newton's method on the saddle
@@ -329,8 +347,7 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
     if (step == kMaxRimSteps) return LeafToDisk{};
     // Newton: M dw + p' dtheta = q - p - w, p'.dw - w.(p - c) dtheta = -w.p'.
     const Vec3 tangent = disk.r * (rim.x() * disk.v - rim.y() * disk.u);  // p'
-    const DualCurvature curvature(e2, q, a, tangent, 0.0);
-    if (!(curvature.det > 0.0)) return LeafToDisk{};
+    const SaddleCurvature curvature(e2, w, a);
     const Vec3 dw_residual = curvature.solve(q - p - w), dw_turn = curvature.solve(tangent);
     const double turn = (tangent.dot(dw_residual) + w.dot(tangent)) /
                         (tangent.dot(dw_turn) + disk.r * w.dot(radial));
