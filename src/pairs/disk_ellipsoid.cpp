@@ -7,6 +7,10 @@
 // close) go to the generic solver with the ellipsoid's projection (the root t
 // of Eberly's secular equation by safeguarded Newton) and its support.
 // docs/disk_shape_distance.md, section 4.
+#include <cstdint>
+#include <cstring>
+#include <utility>
+
 #include "../disk_shape_pair.h"
 
 namespace fcl_disk {
@@ -162,6 +166,10 @@ constexpr int kStepsToSeparate = 3;
 constexpr int kMaxOverlapSteps = 12;
 /// The first (dual) step is halved until F increases, at most this many times.
 constexpr int kMaxDualHalvings = 12;
+/// Semi-axes below this many scene sizes go to the generic solver: in the
+/// closed forms' units of the scene's size their squares would be subnormal
+/// (the sums of squares of the rim iteration lose their precision there).
+constexpr double kMinUnitSemiAxis = 1e-150;
 
 /// The face case (docs/disk_shape_distance.md, section 4, "Ellipsoid"): the
 /// ellipsoid's point extreme towards the disk's plane, on one side of it,
@@ -247,24 +255,6 @@ struct DualCurvature {
   Vec3 solve(const Vec3& b) const { return Vec3(c0.dot(b), c1.dot(b), c2.dot(b)) / det; }
 };
 
-/// The saddle step's M = I + (E^2 - q q^T) / a = D - q q^T / a,
-/// D = diag(1 + e_i^2 / a), solved by Sherman and Morrison:
-/// M^-1 x = a d o x + z (z.x) / sigma with d_i = 1 / (a + e_i^2),
-/// z = D^-1 q = -e2 o w o d and sigma = a - q^T D^-1 q, summed as
-/// sum e_i^2 w_i^2 d_i (> 0: no cancellation, using a^2 = sum e_i^2 w_i^2).
-struct SaddleCurvature {
-  Vec3 a_d, z;
-  double inverse_sigma;
-  SaddleCurvature(const Vec3& e2, const Vec3& w, double a) {
-    const Vec3 d = (Vec3::Constant(a) + e2).cwiseInverse();
-    z = -e2.cwiseProduct(w).cwiseProduct(d);
-    a_d = a * d;
-    inverse_sigma = 1.0 / (-z.dot(w));
-  }
-  /// M^-1 x.
-  Vec3 solve(const Vec3& x) const { return a_d.cwiseProduct(x) + z * (z.dot(x) * inverse_sigma); }
-};
-
 /// A separated pair that is not the face case, whose p* is therefore on the
 /// rim (docs/disk_shape_distance.md, section 4, "Ellipsoid"), from `rim`
 /// (unit, in-plane) and the dual start `w`. Newton's method on the saddle
@@ -328,6 +318,12 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
       length *= 0.5;
     }
   }
+  // The saddle steps scale the turn's numerator and denominator (both of the
+  // size of sigma r^2, a length to the fourth) by this, the last step's
+  // 1 / (sigma r^2), so that the Cayley rotation's squares of them stay of
+  // the size of 1 at any length scale; at the start |w|^2 r^2 stands for it.
+  const double inverse_r2 = 1.0 / (disk.r * disk.r);
+  double turn_scale = inverse_r2 / w.squaredNorm();
   for (int step = 0;; ++step) {
     const Vec3 e2_w = e2.cwiseProduct(w);
     const double a = std::sqrt(w.dot(e2_w));
@@ -345,18 +341,88 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
                                                      : LeafToDisk{};
     }
     if (step == kMaxRimSteps) return LeafToDisk{};
-    // Newton: M dw + p' dtheta = q - p - w, p'.dw - w.(p - c) dtheta = -w.p'.
+    // Newton: M dw + p' dtheta = q - p - w, p'.dw - w.(p - c) dtheta = -w.p',
+    // M = I + (E^2 - q q^T) / a = D - q q^T / a, D = diag(1 + e_i^2 / a), by
+    // Sherman and Morrison: M^-1 x = a d o x + z (z.x) / sigma with
+    // d_i = 1 / (a + e_i^2), z = D^-1 q = -e2 o w o d and sigma = a - q^T D^-1 q,
+    // summed as sum e_i^2 w_i^2 d_i (> 0, no cancellation: a^2 = sum e_i^2 w_i^2).
+    // dtheta = N / D' with N = p'.M^-1 (q - p - w) + w.p' and
+    // D' = p'.M^-1 p' + w.(p - c), taken times sigma so that the turn, its
+    // Cayley rotation and 1 / sigma are three divisions side by side: the
+    // iteration is a chain of dependent operations, whose latency sets its time.
     const Vec3 tangent = disk.r * (rim.x() * disk.v - rim.y() * disk.u);  // p'
-    const SaddleCurvature curvature(e2, w, a);
-    const Vec3 dw_residual = curvature.solve(q - p - w), dw_turn = curvature.solve(tangent);
-    const double turn = (tangent.dot(dw_residual) + w.dot(tangent)) /
-                        (tangent.dot(dw_turn) + disk.r * w.dot(radial));
-    if (!std::isfinite(turn)) return LeafToDisk{};
-    w += dw_residual - turn * dw_turn;
-    const Vec2 rotation = cayleyTurn(turn);
-    rim = Vec2(rotation.x() * rim.x() - rotation.y() * rim.y(),
-               rotation.x() * rim.y() + rotation.y() * rim.x());
+    const Vec3 d = (Vec3::Constant(a) + e2).cwiseInverse();
+    const Vec3 z = -e2_w.cwiseProduct(d);
+    const double sigma = -z.dot(w);
+    const Vec3 residual = q - p - w;
+    const Vec3 a_d_tangent = a * d.cwiseProduct(tangent);
+    const double z_tangent = z.dot(tangent);
+    const double numerator =
+        (sigma * (a_d_tangent.dot(residual) + w.dot(tangent)) + z_tangent * z.dot(residual)) *
+        turn_scale;
+    const double denominator =
+        (sigma * (a_d_tangent.dot(tangent) + disk.r * w.dot(radial)) + z_tangent * z_tangent) *
+        turn_scale;
+    const double inverse_sigma = 1.0 / sigma;
+    const double turn = numerator / denominator;
+    // The Cayley rotation by 2 atan(turn / 2), over the common denominator.
+    const double numerator2 = numerator * numerator;
+    const double denominator2 = 4.0 * denominator * denominator;
+    const double inverse_rotation = 1.0 / (denominator2 + numerator2);
+    const double cos = (denominator2 - numerator2) * inverse_rotation;
+    const double sin = 4.0 * numerator * denominator * inverse_rotation;
+    if (!std::isfinite(turn) || !std::isfinite(inverse_rotation) || !(inverse_rotation > 0.0)) {
+      return LeafToDisk{};
+    }
+    const Vec3 y = residual - turn * tangent;  // dw = M^-1 y
+    w += a * d.cwiseProduct(y) + z * (z.dot(y) * inverse_sigma);
+    rim = Vec2(cos * rim.x() - sin * rim.y(), cos * rim.y() + sin * rim.x());
+    turn_scale = inverse_sigma * inverse_r2;
   }
+}
+
+/// 2^-k and 2^k for the power of two 2^k <= x < 2^(k+1), read off x's
+/// exponent bits (x a positive normal double below 2^1023; the scene sizes
+/// are): scaling by them is exact, and costs no call into libm.
+inline std::pair<double, double> powersOfTwoAbout(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const std::uint64_t biased = (bits >> 52) & 0x7ff;  // k + 1023
+  const std::uint64_t inverse_bits = (2046 - biased) << 52, power_bits = biased << 52;
+  double inverse, power;
+  std::memcpy(&inverse, &inverse_bits, sizeof inverse);
+  std::memcpy(&power, &power_bits, sizeof power);
+  return {inverse, power};
+}
+
+/// The closed forms of a pair whose disk's point nearest the centre is outside
+/// the ellipsoid (docs/disk_shape_distance.md, section 4, "Ellipsoid"): the
+/// face case, else the rim iteration from the rim point towards where the
+/// ellipsoid comes nearest the disk's plane (the foot of its point extreme
+/// towards the plane, or of its centre where the plane cuts it), with w from
+/// that point to its radial point on the ellipsoid. Lengths in units of about
+/// the scene's size (`scale` in [1, 2)); every semi-axis > 0.
+LeafToDisk ellipsoidApart(const EllipsoidTarget& ellipsoid, const DiskInShape& disk,
+                          double scale) {
+  const Vec3& e = ellipsoid.e;
+  const LeafToDisk face = ellipsoidAgainstFace(disk, e, scale);
+  if (face.exact) return face;
+  const double centre_height = -disk.n.dot(disk.c);
+  const Vec3 e_n = e.cwiseProduct(disk.n);
+  const double reach = e_n.norm();
+  const Vec3 nearest_plane =
+      std::abs(centre_height) > reach
+          ? Vec3((centre_height >= 0.0 ? -1.0 : 1.0) / reach * e.cwiseProduct(e_n))
+          : Vec3::Zero();
+  const Vec2 towards = disk.inPlane(nearest_plane - disk.c);
+  const double towards_length = towards.norm();
+  if (!(towards_length > 0.0)) return LeafToDisk{};
+  const Vec2 rim = towards / towards_length;
+  const Vec3 rim_point = disk.point(disk.r * rim);
+  const double rim_level = ellipsoid.levelOnAxes(rim_point);
+  if (rim_level <= 1.0) return meetingAt(rim_point);
+  return ellipsoidAgainstRim(ellipsoid, disk, rim,
+                             rim_point * (1.0 / std::sqrt(rim_level)) - rim_point, scale);
 }
 
 template <typename S>
@@ -389,30 +455,22 @@ struct EllipsoidTraits {
     }
     const double level = ellipsoid_target.levelOnAxes(x);
     if (level <= 1.0) return meetingAt(x);
-    const Vec3& e = ellipsoid_target.e;
-    if (!(e.minCoeff() > 0.0)) return LeafToDisk{};
-    const LeafToDisk face = ellipsoidAgainstFace(disk, e, scale);
-    if (face.exact) return face;
-    // Start: the rim point towards where the ellipsoid comes nearest the
-    // disk's plane (the foot of its point extreme towards the plane, or of its
-    // centre where the plane cuts it), and w from it to its radial point on the
-    // ellipsoid.
-    const double centre_height = -disk.n.dot(disk.c);
-    const Vec3 e_n = e.cwiseProduct(disk.n);
-    const double reach = e_n.norm();
-    const Vec3 nearest_plane = std::abs(centre_height) > reach
-                                   ? Vec3((centre_height >= 0.0 ? -1.0 : 1.0) / reach *
-                                          e.cwiseProduct(e_n))
-                                   : Vec3::Zero();
-    const Vec2 towards = disk.inPlane(nearest_plane - disk.c);
-    const double towards_length = towards.norm();
-    if (!(towards_length > 0.0)) return LeafToDisk{};
-    const Vec2 rim = towards / towards_length;
-    const Vec3 rim_point = disk.point(disk.r * rim);
-    const double rim_level = ellipsoid_target.levelOnAxes(rim_point);
-    if (rim_level <= 1.0) return meetingAt(rim_point);
-    return ellipsoidAgainstRim(ellipsoid_target, disk, rim,
-                               rim_point * (1.0 / std::sqrt(rim_level)) - rim_point, scale);
+    if (!(ellipsoid_target.e.minCoeff() > 0.0)) return LeafToDisk{};
+    // The separated cases work in lengths over a power of two near the scene's
+    // size (exact), so that the squares and fourth powers of lengths they form
+    // (|E w|^2 is one) stay normal doubles at every length scale.
+    const auto [to_unit, from_unit] = powersOfTwoAbout(scale);
+    DiskInShape unit_disk = disk;
+    unit_disk.c *= to_unit;
+    unit_disk.r *= to_unit;
+    const EllipsoidTarget unit_ellipsoid{ellipsoid_target.e * to_unit};
+    if (!(unit_ellipsoid.e.minCoeff() >= kMinUnitSemiAxis)) return LeafToDisk{};
+    LeafToDisk answer = ellipsoidApart(unit_ellipsoid, unit_disk, scale * to_unit);
+    answer.distance *= from_unit;
+    answer.certified *= from_unit;
+    answer.p_disk *= from_unit;
+    answer.p_leaf *= from_unit;
+    return answer;
   }
   /// The principal axes.
   template <typename Search>
