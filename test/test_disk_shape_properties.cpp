@@ -7,7 +7,8 @@
 // answer with the arguments swapped through fcl::distance and after a common
 // rigid motion of both poses, and collide agreeing with the distance outside
 // the touching band, with its contact on both shapes and a normal whose
-// translation by the depth separates them.
+// translation by the depth separates them. The same in double on 4,000 poses
+// per pair scaled by 10^x, x in [-99, 99].
 #include <fcl_disk/fcl_disk.h>
 
 #include <fcl/narrowphase/collision.h>
@@ -32,6 +33,7 @@ using namespace fcl_disk_test::oracle;
 using fcl_disk_test::Random;
 
 constexpr int kPosesPerPair = 100000;
+constexpr int kPosesAtEveryLengthScale = 4000;
 /// Every 50th pose also goes through fcl::distance / fcl::collide both ways and
 /// a rigid motion (the hook's answers equal diskShapeDistance bit for bit,
 /// test_hook checks; this checks the symmetries of the answer).
@@ -130,13 +132,18 @@ fcl::Transform3<S> randomPose(Random& random, double spread) {
   return X.template cast<S>();
 }
 
+/// `poses` random poses of `kind`, half of them scaled by 10^x, x uniform in
+/// [-max_exponent, max_exponent].
 template <typename S>
-void checkPair(Kind kind) {
+void checkPair(Kind kind, int poses = kPosesPerPair, double max_exponent = 6.0) {
   using T = Tolerance<S>;
-  Random random(7919 * (int(kind) + 1) + (std::is_same<S, float>::value ? 1 : 0));
+  Random random(7919 * (int(kind) + 1) + (std::is_same<S, float>::value ? 1 : 0) +
+                int(max_exponent));
   int separated = 0, intersecting = 0;
-  for (int i = 0; i < kPosesPerPair; ++i) {
-    const Real k = random.chance(0.5) ? std::pow(Real(10), Real(random.uniform(-6, 6))) : Real(1);
+  for (int i = 0; i < poses; ++i) {
+    const Real k = random.chance(0.5)
+                       ? std::pow(Real(10), Real(random.uniform(-max_exponent, max_exponent)))
+                       : Real(1);
     const Shape wanted = scaledShape(randomShape(kind, random), k);
     const auto fcl_shape = toFcl<S>(wanted);
     const Shape shape = asStored<S>(wanted, *fcl_shape);
@@ -157,7 +164,8 @@ void checkPair(Kind kind) {
     std::ostringstream what;
     what.precision(17);
     what << kindName(kind) << " pose " << i << " r " << r << "\nX_WD\n" << X_WD.matrix() << "\nX_WS\n"
-         << X_WS.matrix() << "\ndistance " << a.distance << " lower " << a.lower_bound;
+         << X_WS.matrix() << "\ndistance " << a.distance << " lower " << a.lower_bound
+         << "\ndims " << double(shape.dims.x()) << " " << double(shape.dims.y()) << " " << double(shape.dims.z());
     const V3 p = a.p.template cast<Real>(), q = a.q.template cast<Real>();
     ASSERT_TRUE(std::isfinite(double(a.distance))) << what.str();
     ASSERT_LE(double(pointToDisk(disk, p)), tolerance) << "disk point off the disk\n" << what.str();
@@ -206,7 +214,7 @@ void checkPair(Kind kind) {
       }
     }
   }
-  EXPECT_GT(separated, kPosesPerPair / 10) << kindName(kind);
+  EXPECT_GT(separated, poses / 10) << kindName(kind);
   std::cout << kindName(kind) << (std::is_same<S, float>::value ? " float" : " double") << ": "
             << separated << " separated, " << intersecting << " intersecting\n";
 }
@@ -215,6 +223,11 @@ class DiskShapeProperties : public ::testing::TestWithParam<Kind> {};
 
 TEST_P(DiskShapeProperties, Double) { checkPair<double>(GetParam()); }
 TEST_P(DiskShapeProperties, Float) { checkPair<float>(GetParam()); }
+// Lengths from 1e-99 to 1e99 (kMaxDiskLength is 1e100): the solvers' squares
+// and products of lengths must stay normal doubles at every scale.
+TEST_P(DiskShapeProperties, DoubleAtEveryLengthScale) {
+  checkPair<double>(GetParam(), kPosesAtEveryLengthScale, 99.0);
+}
 
 INSTANTIATE_TEST_SUITE_P(EveryPrimitive, DiskShapeProperties,
                          ::testing::Values(Kind::sphere, Kind::box, Kind::capsule, Kind::cylinder,

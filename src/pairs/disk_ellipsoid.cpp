@@ -31,6 +31,20 @@ constexpr double kMinHalleyDivisor = 0.5;
 /// the rounding of any scene the solver resolves (lengths >= kMinDiskRadius).
 constexpr double kFlatSemiAxis = 1e-150;
 
+/// 2^-k and 2^k for the power of two 2^k <= x < 2^(k+1), read off x's
+/// exponent bits (x a positive normal double below 2^1023; the scene sizes
+/// are): scaling by them is exact, and costs no call into libm.
+inline std::pair<double, double> powersOfTwoAbout(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const std::uint64_t biased = (bits >> 52) & 0x7ff;  // k + 1023
+  const std::uint64_t inverse_bits = (2046 - biased) << 52, power_bits = biased << 52;
+  double inverse, power;
+  std::memcpy(&inverse, &inverse_bits, sizeof inverse);
+  std::memcpy(&power, &power_bits, sizeof power);
+  return {inverse, power};
+}
+
 /// The solid ellipsoid {sum (y_i / e_i)^2 <= 1}, in its frame. Semi-axes may be
 /// 0 (a flat ellipse, a segment, a point).
 struct EllipsoidTarget {
@@ -60,15 +74,20 @@ struct EllipsoidTarget {
     // F(t) = sum (e_i y_i / (t + e_i^2))^2 = 1 (F decreasing). Halley's method
     // runs on phi(t) = 1 / sqrt(F(t)) - 1, which is nearly linear in t (exactly,
     // for a sphere), from the radial estimate below, safeguarded by a bracket.
-    const Vec3 e2 = e.cwiseProduct(e);
-    const Vec3 ey = e.cwiseProduct(y);
+    // In lengths over a power of two near the largest semi-axis (exact): the
+    // sums below hold up to fourth powers of lengths, which leave the range of
+    // doubles for lengths far from 1 (at 1e-88, q was 19% off the surface).
+    const auto [to_unit, from_unit] = powersOfTwoAbout(e.maxCoeff());
+    const Vec3 eu = e * to_unit, yu = y * to_unit, yu_on_axes = y_on_axes * to_unit;
+    const Vec3 e2 = eu.cwiseProduct(eu);
+    const Vec3 ey = eu.cwiseProduct(yu);
     // Bracket: each term of F is at most 1 at the root, so t >= e_i |y_i| - e_i^2;
     // F(t) <= |e o y|^2 / (t + e_min^2)^2, so t <= |e o y| - e_min^2.
     double e_min = std::numeric_limits<double>::infinity();
     double lo = 0.0;
     for (int i = 0; i < 3; ++i) {
-      if (!(e[i] > 0.0)) continue;
-      e_min = std::min(e_min, e[i]);
+      if (!(eu[i] > 0.0)) continue;
+      e_min = std::min(e_min, eu[i]);
       lo = std::max(lo, std::abs(ey[i]) - e2[i]);
     }
     double hi = std::max(ey.norm() - e_min * e_min, lo);
@@ -79,8 +98,8 @@ struct EllipsoidTarget {
     // projection takes 3.1 evaluations of phi (docs/disk_shape_distance.md,
     // section 4). Out of the bracket, or not finite
     // (A y overflows for semi-axes near kFlatSemiAxis), the bracket's end.
-    const Vec3 a_y = y_on_axes.cwiseQuotient(e2.cwiseMax(std::numeric_limits<double>::min()));
-    const double radial = (std::sqrt(level) - 1.0) * y_on_axes.norm() / a_y.norm();
+    const Vec3 a_y = yu_on_axes.cwiseQuotient(e2.cwiseMax(std::numeric_limits<double>::min()));
+    const double radial = (std::sqrt(level) - 1.0) * yu_on_axes.norm() / a_y.norm();
     double t = radial > lo ? std::min(radial, hi) : lo;
     // With r_i = e_i y_i / (t + e_i^2): F = sum r_i^2 = f, F' = -2 g1 and
     // F'' = 6 g2 (g1 = sum r_i^2 / (t + e_i^2), g2 = sum r_i^2 / (t + e_i^2)^2).
@@ -100,7 +119,7 @@ struct EllipsoidTarget {
     for (int evaluation = 1;; ++evaluation) {
       double f = 0.0, g1 = 0.0, g2 = 0.0;
       for (int i = 0; i < 3; ++i) {
-        inverse[i] = e[i] > 0.0 ? 1.0 / (t + e2[i]) : 0.0;
+        inverse[i] = eu[i] > 0.0 ? 1.0 / (t + e2[i]) : 0.0;
         const double ratio = ey[i] * inverse[i];
         const double term = ratio * ratio * inverse[i];
         f += ratio * ratio;
@@ -128,8 +147,8 @@ struct EllipsoidTarget {
     Vec3 q_S, a, v;  // a = A q, v = M a, M = diag(e_i^2 / (t + e_i^2))
     Vec3 m_diagonal;
     for (int i = 0; i < 3; ++i) {
-      q_S[i] = e2[i] * y[i] * inverse[i];
-      a[i] = y[i] * inverse[i];
+      q_S[i] = e2[i] * yu[i] * inverse[i] * from_unit;
+      a[i] = yu[i] * inverse[i];
       m_diagonal[i] = e2[i] * inverse[i];
       v[i] = m_diagonal[i] * a[i];
     }
@@ -379,20 +398,6 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
     rim = Vec2(cos * rim.x() - sin * rim.y(), cos * rim.y() + sin * rim.x());
     turn_scale = inverse_sigma * inverse_r2;
   }
-}
-
-/// 2^-k and 2^k for the power of two 2^k <= x < 2^(k+1), read off x's
-/// exponent bits (x a positive normal double below 2^1023; the scene sizes
-/// are): scaling by them is exact, and costs no call into libm.
-inline std::pair<double, double> powersOfTwoAbout(double x) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  const std::uint64_t biased = (bits >> 52) & 0x7ff;  // k + 1023
-  const std::uint64_t inverse_bits = (2046 - biased) << 52, power_bits = biased << 52;
-  double inverse, power;
-  std::memcpy(&inverse, &inverse_bits, sizeof inverse);
-  std::memcpy(&power, &power_bits, sizeof power);
-  return {inverse, power};
 }
 
 /// The closed forms of a pair whose disk's point nearest the centre is outside
