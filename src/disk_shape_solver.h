@@ -32,8 +32,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "fcl_disk/disk_shape_distance.h"
 #include "pair_in_frame1.h"
@@ -502,6 +505,20 @@ inline Vec2 modelStepOnDisk(const Mat2& H, const Vec2& g_raw, const Vec2& s, dou
     if (settled) break;
   }
   return step_for(mu);
+}
+
+/// 2^-k and 2^k for the power of two 2^k <= x < 2^(k+1), read off x's
+/// exponent bits (x a positive normal double below 2^1023; the scene sizes
+/// are): scaling by them is exact, and costs no call into libm.
+inline std::pair<double, double> powersOfTwoAbout(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  const std::uint64_t biased = (bits >> 52) & 0x7ff;  // k + 1023
+  const std::uint64_t inverse_bits = (2046 - biased) << 52, power_bits = biased << 52;
+  double inverse, power;
+  std::memcpy(&inverse, &inverse_bits, sizeof inverse);
+  std::memcpy(&power, &power_bits, sizeof power);
+  return {inverse, power};
 }
 
 /// (cos, sin) of a turn by about dtheta: the rational (Cayley) rotation by

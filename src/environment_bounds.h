@@ -379,9 +379,9 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
 /// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|;
 /// `worth_below`: a traversal's best distance so far (it drops leaves bounded
 /// at or above it), tryEdges'.
-inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
-                                 const Vec3& p2, double scale,
-                                 double worth_below = std::numeric_limits<double>::infinity()) {
+/// triangleToDisk in lengths of about the scene's size (`scale` in [1, 2)).
+inline LeafToDisk triangleToDiskInUnits(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
+                                        const Vec3& p2, double scale, double worth_below) {
   const Vec3* vertices[3] = {&p0, &p1, &p2};
   double a[3];
   Vec2 foot[3];
@@ -495,6 +495,27 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
     tryEdges(disk, edges, least_along, worth_below, &lower, &upper, &upper_disk, &upper_triangle);
   }
   return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
+}
+
+/// The answer of triangleToDiskInUnits for the triangle and the disk in lengths
+/// over a power of two near `scale` (exact), scaled back: its face test
+/// multiplies lengths to the fifth power, which leaves the range of doubles
+/// for scenes far from 1 in size (at 1e-73 it certified the triangle's
+/// origin as its nearest point).
+inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
+                                 const Vec3& p2, double scale,
+                                 double worth_below = std::numeric_limits<double>::infinity()) {
+  const auto [to_unit, from_unit] = powersOfTwoAbout(scale);
+  DiskInShape unit_disk = disk;
+  unit_disk.c *= to_unit;
+  unit_disk.r *= to_unit;
+  LeafToDisk answer = triangleToDiskInUnits(unit_disk, p0 * to_unit, p1 * to_unit, p2 * to_unit,
+                                            scale * to_unit, worth_below * to_unit);
+  answer.distance *= from_unit;
+  answer.certified *= from_unit;
+  answer.p_disk *= from_unit;
+  answer.p_leaf *= from_unit;
+  return answer;
 }
 
 /// The least w.y over the box centre o, half-extents h: w.o - h.|w|.

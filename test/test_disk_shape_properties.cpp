@@ -166,6 +166,7 @@ void checkPair(Kind kind, int poses = kPosesPerPair, double max_exponent = 6.0) 
     what << kindName(kind) << " pose " << i << " r " << r << "\nX_WD\n" << X_WD.matrix() << "\nX_WS\n"
          << X_WS.matrix() << "\ndistance " << a.distance << " lower " << a.lower_bound
          << "\ndims " << double(shape.dims.x()) << " " << double(shape.dims.y()) << " " << double(shape.dims.z());
+    for (const V3& v : shape.vertices) what << "\nvertex " << double(v.x()) << " " << double(v.y()) << " " << double(v.z());
     const V3 p = a.p.template cast<Real>(), q = a.q.template cast<Real>();
     ASSERT_TRUE(std::isfinite(double(a.distance))) << what.str();
     ASSERT_LE(double(pointToDisk(disk, p)), tolerance) << "disk point off the disk\n" << what.str();

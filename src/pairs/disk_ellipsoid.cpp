@@ -7,10 +7,6 @@
 // close) go to the generic solver with the ellipsoid's projection (the root t
 // of Eberly's secular equation by safeguarded Newton) and its support.
 // docs/disk_shape_distance.md, section 4.
-#include <cstdint>
-#include <cstring>
-#include <utility>
-
 #include "../disk_shape_pair.h"
 
 namespace fcl_disk {
@@ -30,20 +26,6 @@ constexpr double kMinHalleyDivisor = 0.5;
 /// equation divides by, would be subnormal or 0, and such an extent is below
 /// the rounding of any scene the solver resolves (lengths >= kMinDiskRadius).
 constexpr double kFlatSemiAxis = 1e-150;
-
-/// 2^-k and 2^k for the power of two 2^k <= x < 2^(k+1), read off x's
-/// exponent bits (x a positive normal double below 2^1023; the scene sizes
-/// are): scaling by them is exact, and costs no call into libm.
-inline std::pair<double, double> powersOfTwoAbout(double x) {
-  std::uint64_t bits;
-  std::memcpy(&bits, &x, sizeof bits);
-  const std::uint64_t biased = (bits >> 52) & 0x7ff;  // k + 1023
-  const std::uint64_t inverse_bits = (2046 - biased) << 52, power_bits = biased << 52;
-  double inverse, power;
-  std::memcpy(&inverse, &inverse_bits, sizeof inverse);
-  std::memcpy(&power, &power_bits, sizeof power);
-  return {inverse, power};
-}
 
 /// The solid ellipsoid {sum (y_i / e_i)^2 <= 1}, in its frame. Semi-axes may be
 /// 0 (a flat ellipse, a segment, a point).
