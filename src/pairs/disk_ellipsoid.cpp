@@ -144,8 +144,14 @@ struct EllipsoidTarget {
 
   Vec3 support(const Vec3& w) const {
     // argmax of w.y: A^-1 w / sqrt(w^T A^-1 w), A^-1 = diag(e_i^2).
+    // w may be any length (certificates take it along a pair's separation), so
+    // |E w| is taken without overflow or underflow of its square.
     const Vec3 scaled = e.cwiseProduct(w);
-    const double length = scaled.norm();
+    const double squared = scaled.squaredNorm();
+    const double length = squared >= std::numeric_limits<double>::min() &&
+                                  squared <= std::numeric_limits<double>::max()
+                              ? std::sqrt(squared)
+                              : scaled.stableNorm();
     if (!(length > 0.0)) return Vec3::Zero();  // w along only zero axes: every point ties
     return e.cwiseProduct(scaled) / length;
   }
