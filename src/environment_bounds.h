@@ -379,7 +379,7 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
 /// `scale`: the solver's scene size, r + the triangle's bounding radius + |c|;
 /// `worth_below`: a traversal's best distance so far (it drops leaves bounded
 /// at or above it), tryEdges'.
-/// triangleToDisk in lengths of about the scene's size (`scale` in [1, 2)).
+/// triangleToDisk for a scene within kTriangleUnscaledRange of 1 in size.
 inline LeafToDisk triangleToDiskInUnits(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
                                         const Vec3& p2, double scale, double worth_below) {
   const Vec3* vertices[3] = {&p0, &p1, &p2};
@@ -497,14 +497,21 @@ inline LeafToDisk triangleToDiskInUnits(const DiskInShape& disk, const Vec3& p0,
   return certifiedOrBound(lower, upper, upper_disk, upper_triangle, scale);
 }
 
-/// The answer of triangleToDiskInUnits for the triangle and the disk in lengths
-/// over a power of two near `scale` (exact), scaled back: its face test
-/// multiplies lengths to the fifth power, which leaves the range of doubles
-/// for scenes far from 1 in size (at 1e-73 it certified the triangle's
-/// origin as its nearest point).
+/// Scenes within this factor of 1 in size are solved in their own lengths by
+/// triangleToDisk: its face test multiplies lengths to the fifth power, which
+/// stays a normal double there.
+constexpr double kTriangleUnscaledRange = 1e50;
+
+/// The answer of triangleToDiskInUnits; for scenes outside
+/// kTriangleUnscaledRange, with the triangle and the disk in lengths over a
+/// power of two near `scale` (exact), scaled back (at 1e-73 the fifth powers
+/// underflowed and the triangle's origin was certified as its nearest point).
 inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
                                  const Vec3& p2, double scale,
                                  double worth_below = std::numeric_limits<double>::infinity()) {
+  if (scale >= 1.0 / kTriangleUnscaledRange && scale <= kTriangleUnscaledRange) {
+    return triangleToDiskInUnits(disk, p0, p1, p2, scale, worth_below);
+  }
   const auto [to_unit, from_unit] = powersOfTwoAbout(scale);
   DiskInShape unit_disk = disk;
   unit_disk.c *= to_unit;
