@@ -166,7 +166,8 @@ constexpr int kMaxRimSteps = 8;
 /// dual optimum is then w = 0, where L is not smooth) and to 26 apart, all but
 /// one of which, run on, reach the step cap at a stationary point of the
 /// distance along the rim that is not its minimum: ellipsoidOverlap decides,
-/// and pairs apart are left to the generic solver.
+/// and pairs apart get one more start (ellipsoidApart) before the generic
+/// solver.
 constexpr int kStepsToSeparate = 3;
 /// ellipsoidOverlap's Newton steps on its secular equation; undecided after
 /// (a pair touching to rounding).
@@ -280,9 +281,10 @@ struct DualCurvature {
 /// and G(w / |w|) = (-|E w| - w.c - r |U^T w|) / |w| (the certificate of docs
 /// section 2 along w) a lower bound: exact when they meet within
 /// kShapeGapTolerance of the scene. Else not exact (the generic solver
-/// answers), or the common point ellipsoidOverlap finds.
+/// answers), or the common point ellipsoidOverlap finds; `*apart` is set when
+/// ellipsoidOverlap has proven the pair apart (it is not asked again).
 LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInShape& disk,
-                               Vec2 rim, Vec3 w, double scale) {
+                               Vec2 rim, Vec3 w, double scale, bool* apart) {
   const Vec3 e2 = ellipsoid.e.cwiseProduct(ellipsoid.e);
   const double tolerance = kShapeGapTolerance * scale;
   // G(w) and F(w) at w; nullopt where |E w| or |U^T w| is 0.
@@ -343,7 +345,9 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
         (-a - w.dot(disk.c) - disk.r * disk.inPlane(w).norm()) / w.norm();
     if (upper - lower <= tolerance) return certifiedOrBound(lower, upper, p, q, scale);
     if (!(lower > 0.0) && step == kStepsToSeparate) {
+      if (*apart) return LeafToDisk{};
       const OverlapVerdict verdict = ellipsoidOverlap(ellipsoid.e, disk);
+      *apart = verdict.kind == OverlapVerdict::apart;
       return verdict.kind == OverlapVerdict::overlap ? meetingAt(verdict.common_point)
                                                      : LeafToDisk{};
     }
@@ -414,8 +418,14 @@ LeafToDisk ellipsoidApart(const EllipsoidTarget& ellipsoid, const DiskInShape& d
   const Vec3 rim_point = disk.point(disk.r * rim);
   const double rim_level = ellipsoid.levelOnAxes(rim_point);
   if (rim_level <= 1.0) return meetingAt(rim_point);
-  return ellipsoidAgainstRim(ellipsoid, disk, rim,
-                             rim_point * (1.0 / std::sqrt(rim_level)) - rim_point, scale);
+  bool apart = false;
+  const LeafToDisk answer = ellipsoidAgainstRim(
+      ellipsoid, disk, rim, rim_point * (1.0 / std::sqrt(rim_level)) - rim_point, scale, &apart);
+  if (answer.exact || !apart || !(std::abs(centre_height) > reach)) return answer;
+  // A pair apart that the iteration did not certify, whose plane does not cut
+  // the ellipsoid: again from the same rim point, with w towards the
+  // ellipsoid's point extreme towards the plane (the face case nearly holds).
+  return ellipsoidAgainstRim(ellipsoid, disk, rim, nearest_plane - rim_point, scale, &apart);
 }
 
 template <typename S>
