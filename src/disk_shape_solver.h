@@ -508,8 +508,9 @@ inline Vec2 modelStepOnDisk(const Mat2& H, const Vec2& g_raw, const Vec2& s, dou
 }
 
 /// 2^-k and 2^k for the power of two 2^k <= x < 2^(k+1), read off x's
-/// exponent bits (x a positive normal double below 2^1023; the scene sizes
-/// are): scaling by them is exact, and costs no call into libm.
+/// exponent bits (x a positive normal double below 2^1023, as the scene sizes
+/// are; for a subnormal x, 2^1023 and 0): scaling by them is exact, and costs
+/// no call into libm.
 inline std::pair<double, double> powersOfTwoAbout(double x) {
   std::uint64_t bits;
   std::memcpy(&bits, &x, sizeof bits);

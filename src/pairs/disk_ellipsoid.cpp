@@ -1,4 +1,4 @@
-// Disk - fcl::Ellipsoid, in the ellipsoid's frame (lengths as given). Closed
+// Disk - fcl::Ellipsoid, in the ellipsoid's frame. Closed
 // forms first: a common point where the disk's point nearest the centre lies
 // inside; the face case; else Newton's method on the saddle point of the
 // Fenchel dual along the rim, certified by the duality gap, with the overlap
@@ -143,15 +143,14 @@ struct EllipsoidTarget {
   }
 
   Vec3 support(const Vec3& w) const {
-    // argmax of w.y: A^-1 w / sqrt(w^T A^-1 w), A^-1 = diag(e_i^2).
-    // w may be any length (certificates take it along a pair's separation), so
-    // |E w| is taken without overflow or underflow of its square.
-    const Vec3 scaled = e.cwiseProduct(w);
-    const double squared = scaled.squaredNorm();
-    const double length = squared >= std::numeric_limits<double>::min() &&
-                                  squared <= std::numeric_limits<double>::max()
-                              ? std::sqrt(squared)
-                              : scaled.stableNorm();
+    // argmax of w.y: A^-1 w / sqrt(w^T A^-1 w), A^-1 = diag(e_i^2), which does
+    // not depend on w's length: w is taken over a power of two near its
+    // largest component (exact), since certificates pass it at any length
+    // (along a pair's separation), and |E w|'s square would leave the doubles.
+    const double largest = w.cwiseAbs().maxCoeff();
+    if (!(largest > 0.0 && largest <= std::numeric_limits<double>::max())) return Vec3::Zero();
+    const Vec3 scaled = e.cwiseProduct(w * powersOfTwoAbout(largest).first);
+    const double length = scaled.norm();
     if (!(length > 0.0)) return Vec3::Zero();  // w along only zero axes: every point ties
     return e.cwiseProduct(scaled) / length;
   }
