@@ -504,8 +504,9 @@ constexpr double kTriangleUnscaledRange = 1e50;
 
 /// The answer of triangleToDiskInUnits; for scenes outside
 /// kTriangleUnscaledRange, with the triangle and the disk in lengths over a
-/// power of two near `scale` (exact), scaled back (at 1e-73 the fifth powers
-/// underflowed and the triangle's origin was certified as its nearest point).
+/// power of two near `scale` (exact), scaled back (unscaled, at 1e-73 the
+/// fifth powers underflow and the triangle's origin comes out certified as its
+/// nearest point).
 inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const Vec3& p1,
                                  const Vec3& p2, double scale,
                                  double worth_below = std::numeric_limits<double>::infinity()) {

@@ -58,7 +58,8 @@ struct EllipsoidTarget {
     // for a sphere), from the radial estimate below, safeguarded by a bracket.
     // In lengths over a power of two near the largest semi-axis (exact): the
     // sums below hold up to fourth powers of lengths, which leave the range of
-    // doubles for lengths far from 1 (at 1e-88, q was 19% off the surface).
+    // doubles for lengths far from 1 (unscaled, at 1e-88 q lands 19% off the
+    // surface).
     const auto [to_unit, from_unit] = powersOfTwoAbout(e.maxCoeff());
     const Vec3 eu = e * to_unit, yu = y * to_unit, yu_on_axes = y_on_axes * to_unit;
     const Vec3 e2 = eu.cwiseProduct(eu);
