@@ -358,6 +358,28 @@ inline double originToTriangle2(const Vec2& p0, const Vec2& p1, const Vec2& p2) 
   return std::sqrt(nearest_squared);
 }
 
+/// A leaf's answer computed in lengths over a power of two near `scale`, the
+/// scene's size (an exact scaling), and scaled back: `solve(unit_disk, to_unit,
+/// unit_scale)` answers for the disk so scaled, with its own shape's lengths
+/// times `to_unit`, and `unit_scale` in [1, 2). For closed forms that multiply
+/// more than two lengths, whose products would otherwise leave the range of
+/// doubles in scenes far from 1 in size. Not inlined: it is the rare path, and
+/// a flattened caller (TriangleTraits::closedForm) would otherwise hold the
+/// solver twice.
+template <typename Solve>
+[[gnu::noinline]] LeafToDisk inSceneUnits(const DiskInShape& disk, double scale, Solve&& solve) {
+  const auto [to_unit, from_unit] = powersOfTwoAbout(scale);
+  DiskInShape unit_disk = disk;
+  unit_disk.c *= to_unit;
+  unit_disk.r *= to_unit;
+  LeafToDisk answer = solve(unit_disk, to_unit, scale * to_unit);
+  answer.distance *= from_unit;
+  answer.certified *= from_unit;
+  answer.p_disk *= from_unit;
+  answer.p_leaf *= from_unit;
+  return answer;
+}
+
 /// The triangle p0 p1 p2 (frame of the disk's DiskInShape) against the disk,
 /// without iterating (docs/meshes_and_octrees.md, "Distance traversal"):
 ///  * every vertex projects into the disk: (1) is exact (the first vertex of
@@ -513,17 +535,11 @@ inline LeafToDisk triangleToDisk(const DiskInShape& disk, const Vec3& p0, const 
   if (scale >= 1.0 / kTriangleUnscaledRange && scale <= kTriangleUnscaledRange) {
     return triangleToDiskInUnits(disk, p0, p1, p2, scale, worth_below);
   }
-  const auto [to_unit, from_unit] = powersOfTwoAbout(scale);
-  DiskInShape unit_disk = disk;
-  unit_disk.c *= to_unit;
-  unit_disk.r *= to_unit;
-  LeafToDisk answer = triangleToDiskInUnits(unit_disk, p0 * to_unit, p1 * to_unit, p2 * to_unit,
-                                            scale * to_unit, worth_below * to_unit);
-  answer.distance *= from_unit;
-  answer.certified *= from_unit;
-  answer.p_disk *= from_unit;
-  answer.p_leaf *= from_unit;
-  return answer;
+  return inSceneUnits(disk, scale, [&](const DiskInShape& unit_disk, double to_unit,
+                                       double unit_scale) {
+    return triangleToDiskInUnits(unit_disk, p0 * to_unit, p1 * to_unit, p2 * to_unit, unit_scale,
+                                 worth_below * to_unit);
+  });
 }
 
 /// The least w.y over the box centre o, half-extents h: w.o - h.|w|.

@@ -179,23 +179,6 @@ constexpr int kMaxDualHalvings = 12;
 /// (the sums of squares of the rim iteration lose their precision there).
 constexpr double kMinUnitSemiAxis = 1e-150;
 
-/// The face case (docs/disk_shape_distance.md, section 4, "Ellipsoid"): the
-/// ellipsoid's point extreme towards the disk's plane, on one side of it,
-/// projecting into the disk. `e` all > 0; `disk` orthonormal.
-LeafToDisk ellipsoidAgainstFace(const DiskInShape& disk, const Vec3& e, double scale) {
-  const double centre_height = -disk.n.dot(disk.c);  // the ellipsoid's centre over the plane
-  const double side = centre_height >= 0.0 ? 1.0 : -1.0;
-  const Vec3 e_n = e.cwiseProduct(disk.n);
-  const double reach = e_n.norm();  // h_E(n) = h_E(-n) = |E n|
-  const double height = std::abs(centre_height) - reach;
-  if (!(height > 0.0)) return LeafToDisk{};  // the plane cuts the ellipsoid
-  const Vec3 q = (-side / reach) * e.cwiseProduct(e_n);
-  const Vec2 s = disk.inPlane(q - disk.c);
-  if (!(s.squaredNorm() <= disk.r * disk.r)) return LeafToDisk{};
-  const Vec3 p = disk.point(s);
-  return certifiedOrBound(height, (q - p).norm(), p, q, scale);
-}
-
 /// Whether the disk meets the ellipsoid (docs/disk_shape_distance.md, section
 /// 4, "Ellipsoid"): the least of the level l(y) = sum (y_i / e_i)^2 over the
 /// disk, l(c + U s) = |b + A s|^2 (A = E^-1 U, b = E^-1 c), is at most 1. A
@@ -393,24 +376,31 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
 }
 
 /// The closed forms of a pair whose disk's point nearest the centre is outside
-/// the ellipsoid (docs/disk_shape_distance.md, section 4, "Ellipsoid"): the
-/// face case, else the rim iteration from the rim point towards where the
-/// ellipsoid comes nearest the disk's plane (the foot of its point extreme
-/// towards the plane, or of its centre where the plane cuts it), with w from
-/// that point to its radial point on the ellipsoid. Lengths in units of about
-/// the scene's size (`scale` in [1, 2)); every semi-axis > 0.
+/// the ellipsoid (docs/disk_shape_distance.md, section 4, "Ellipsoid"). The
+/// face case: the ellipsoid's point extreme towards the disk's plane, on one
+/// side of it, projecting into the disk. Else the rim iteration from the rim
+/// point towards where the ellipsoid comes nearest the plane (the foot of that
+/// extreme point, or of its centre where the plane cuts it), with w from that
+/// point to its radial point on the ellipsoid. Lengths in units of about the
+/// scene's size (`scale` in [1, 2)); every semi-axis > 0; `disk` orthonormal.
 LeafToDisk ellipsoidApart(const EllipsoidTarget& ellipsoid, const DiskInShape& disk,
                           double scale) {
   const Vec3& e = ellipsoid.e;
-  const LeafToDisk face = ellipsoidAgainstFace(disk, e, scale);
-  if (face.exact) return face;
-  const double centre_height = -disk.n.dot(disk.c);
+  const double centre_height = -disk.n.dot(disk.c);  // the ellipsoid's centre over the plane
   const Vec3 e_n = e.cwiseProduct(disk.n);
-  const double reach = e_n.norm();
-  const Vec3 nearest_plane =
-      std::abs(centre_height) > reach
-          ? Vec3((centre_height >= 0.0 ? -1.0 : 1.0) / reach * e.cwiseProduct(e_n))
-          : Vec3::Zero();
+  const double reach = e_n.norm();  // h_E(n) = h_E(-n) = |E n|
+  const double height = std::abs(centre_height) - reach;  // <= 0: the plane cuts it
+  Vec3 nearest_plane = Vec3::Zero();
+  if (height > 0.0) {
+    nearest_plane = ((centre_height >= 0.0 ? -1.0 : 1.0) / reach) * e.cwiseProduct(e_n);
+    const Vec2 s = disk.inPlane(nearest_plane - disk.c);
+    if (s.squaredNorm() <= disk.r * disk.r) {
+      const Vec3 p = disk.point(s);
+      const LeafToDisk face = certifiedOrBound(height, (nearest_plane - p).norm(), p,
+                                               nearest_plane, scale);
+      if (face.exact) return face;
+    }
+  }
   const Vec2 towards = disk.inPlane(nearest_plane - disk.c);
   const double towards_length = towards.norm();
   if (!(towards_length > 0.0)) return LeafToDisk{};
@@ -421,7 +411,7 @@ LeafToDisk ellipsoidApart(const EllipsoidTarget& ellipsoid, const DiskInShape& d
   bool apart = false;
   const LeafToDisk answer = ellipsoidAgainstRim(
       ellipsoid, disk, rim, rim_point * (1.0 / std::sqrt(rim_level)) - rim_point, scale, &apart);
-  if (answer.exact || !apart || !(std::abs(centre_height) > reach)) return answer;
+  if (answer.exact || !apart || !(height > 0.0)) return answer;
   // A pair apart that the iteration did not certify, whose plane does not cut
   // the ellipsoid: again from the same rim point, with w towards the
   // ellipsoid's point extreme towards the plane (the face case nearly holds).
@@ -462,18 +452,12 @@ struct EllipsoidTraits {
     // The separated cases work in lengths over a power of two near the scene's
     // size (exact), so that the squares and fourth powers of lengths they form
     // (|E w|^2 is one) stay normal doubles at every length scale.
-    const auto [to_unit, from_unit] = powersOfTwoAbout(scale);
-    DiskInShape unit_disk = disk;
-    unit_disk.c *= to_unit;
-    unit_disk.r *= to_unit;
-    const EllipsoidTarget unit_ellipsoid{ellipsoid_target.e * to_unit};
-    if (!(unit_ellipsoid.e.minCoeff() >= kMinUnitSemiAxis)) return LeafToDisk{};
-    LeafToDisk answer = ellipsoidApart(unit_ellipsoid, unit_disk, scale * to_unit);
-    answer.distance *= from_unit;
-    answer.certified *= from_unit;
-    answer.p_disk *= from_unit;
-    answer.p_leaf *= from_unit;
-    return answer;
+    return inSceneUnits(disk, scale, [&](const DiskInShape& unit_disk, double to_unit,
+                                         double unit_scale) {
+      const EllipsoidTarget unit_ellipsoid{ellipsoid_target.e * to_unit};
+      if (!(unit_ellipsoid.e.minCoeff() >= kMinUnitSemiAxis)) return LeafToDisk{};
+      return ellipsoidApart(unit_ellipsoid, unit_disk, unit_scale);
+    });
   }
   /// The principal axes.
   template <typename Search>
