@@ -887,13 +887,49 @@ int lensCorners(const PairInFrame1& pair, double scale, std::array<Vec2, 2>* cor
   return count;
 }
 
+/// A rim-rim candidate and whether its points, not only its distance, are
+/// proven: the certificate (with t1 x t2) proves the distance; along the
+/// points' own separation q - x it must close as well, up to what the rounding
+/// of that direction (kSeparationRounding eps scale / d) costs at g's kinks,
+/// where g is Lipschitz with constant r1 + r2. Without the second test a flat
+/// optimum could be reported with the right distance and points off the
+/// optimal pair (docs/fuzzing.md, regression input 8).
+struct CornerAnswer {
+  Solution solution;
+  bool proven;
+};
+
+/// The candidate at rim 1's point in direction `radial`, `at` its evaluation,
+/// certified (certificate(), with the separation's certificate computed once).
+CornerAnswer certifiedCorner(const PairInFrame1& pair, const Vec2& radial, const PointToDisk2& at,
+                             double scale, double face_lower_bound) {
+  const Vec3 x(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0);
+  const Vec3& q = at.q;
+  const double distance = (q - x).norm();
+  const double tolerance = kGapTolerance * scale;
+  const double along_separation = separationCertificate(pair, x, q, face_lower_bound);
+  const double lower = distance - along_separation <= tolerance
+                           ? along_separation
+                           : std::max(along_separation, tangentCrossCertificate(pair, x, q));
+  const double direction_rounding =
+      distance > 0.0 ? (pair.r1 + pair.r2) * kSeparationRounding * kEps * scale / distance : 0.0;
+  const bool proven = distance - lower <= tolerance &&
+                      distance - along_separation <= tolerance + direction_rounding;
+  return {Solution{x, q, distance, DiskPairFeature::rim_rim, 0, lower}, proven};
+}
+
 /// A rim-rim candidate at a lens corner: Newton along rim 1 from the rim point
 /// in direction `radial` on phi, half the squared distance to disk 2's rim
 /// circle, which is smooth across the corner (where psi's curvature jumps).
-/// Always a feasible pair (a point of each rim); the certificate says whether
-/// it is the optimum.
-Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at, double scale,
-                          double face_lower_bound) {
+/// Always a feasible pair (a point of each rim). Once a step would lower phi
+/// by less than the gap tolerance allows (rimNewton's `converging` test), the
+/// point is certified without it and returned if proven; else the steps go on
+/// to rounding, and the last point is certified.
+CornerAnswer rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at,
+                              double scale, double face_lower_bound) {
+  const double certify_below = kCertifyStep * scale;
+  const double gap_tolerance = kGapTolerance * scale;
+  bool tried_unmoved = false;  // certified at the current point already
   for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
     const Vec2 tangent(-radial.y(), radial.x());
     // As in rimRim: phi' = r1 sigma, phi'' = r1 kappa, here with the rim's
@@ -903,47 +939,26 @@ Solution rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at
     const double kappa = pair.r1 * along.curvature + along.outward;
     if (!(kappa > 0.0)) break;
     const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
+    if (!tried_unmoved && std::abs(dtheta) * pair.r1 <= certify_below &&
+        0.5 * pair.r1 * kappa * dtheta * dtheta <= std::sqrt(2.0 * at.psi) * gap_tolerance) {
+      const CornerAnswer here = certifiedCorner(pair, radial, at, scale, face_lower_bound);
+      if (here.proven) return here;
+      tried_unmoved = true;
+    }
     const Vec2 rotation = cayleyRotation(dtheta);
     const Vec2 radial_next = rotation.x() * radial + rotation.y() * tangent;
     const PointToDisk2 next = evaluate<DistanceTo::rim2>(pair, pair.r1 * radial_next);
     if (!(next.psi < at.psi)) break;  // converged to rounding
-    radial = radial_next, at = next;
+    radial = radial_next, at = next, tried_unmoved = false;
     if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
   }
-  const Vec3 x(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0);
-  const Vec3 q = at.q;
-  return {x, q, (q - x).norm(), DiskPairFeature::rim_rim, 0,
-          certificate(pair, x, q, face_lower_bound)};
-}
-
-/// Whether a rim-rim answer's points, not only its distance, are proven: the
-/// certificate (with t1 x t2) proves the distance; along the points' own
-/// separation q - x it must close as well, up to what the rounding of that
-/// direction (kSeparationRounding eps scale / d) costs at g's kinks, where g is
-/// Lipschitz with constant r1 + r2. Without the second test a flat optimum
-/// could be reported with the right distance and points off the optimal pair
-/// (docs/fuzzing.md, regression input 8).
-bool pointsProven(const PairInFrame1& pair, const Solution& answer, double scale,
-                  double face_lower_bound) {
-  const double tolerance = kGapTolerance * scale;
-  if (!(answer.distance - answer.lower_bound <= tolerance)) return false;
-  const double direction_rounding =
-      answer.distance > 0.0
-          ? (pair.r1 + pair.r2) * kSeparationRounding * kEps * scale / answer.distance
-          : 0.0;
-  return answer.distance - separationCertificate(pair, answer.p, answer.q, face_lower_bound) <=
-         tolerance + direction_rounding;
+  return certifiedCorner(pair, radial, at, scale, face_lower_bound);
 }
 
 /// The rim-rim candidates at the lens corners, for rims that cross in
 /// projection (nullopt otherwise; the caller tries them for planes within
 /// kTiltedStart, sine, of parallel): the first whose points are proven
 /// (`proven`), else the nearer of the two.
-struct CornerAnswer {
-  Solution solution;
-  bool proven;
-};
-
 std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double scale,
                                                double face_lower_bound) {
   std::array<Vec2, 2> corners;
@@ -958,9 +973,9 @@ std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double 
   }
   std::optional<CornerAnswer> best;
   for (int k = 0; k < count; ++k) {
-    const Solution found = rimRimFromCorner(pair, corners[k], at[k], scale, face_lower_bound);
-    if (pointsProven(pair, found, scale, face_lower_bound)) return CornerAnswer{found, true};
-    best = CornerAnswer{best ? nearer(best->solution, found) : found, false};
+    const CornerAnswer found = rimRimFromCorner(pair, corners[k], at[k], scale, face_lower_bound);
+    if (found.proven) return found;
+    best = CornerAnswer{best ? nearer(best->solution, found.solution) : found.solution, false};
   }
   return best;
 }
