@@ -539,13 +539,15 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 /// y, psi = h^2 / 2), and the gradient may point into disk 1 on the way (the
 /// multiplier term of kappa is then dropped, as in rimRim); the optimum is on
 /// the rim (section 4), so only a point where the rim steps stall with the
-/// gradient pointing inwards needs rimRim's model step. Returns the certified
-/// answer, or nullopt with *radial at the last point reached when a step is
-/// not a plain one: such a stall, no positive curvature, a clamped step, or
-/// psi not decreasing beyond rounding (a certificate that fails earlier only
-/// means more steps; one that fails at rounding level is reported with the
-/// t1 x t2 direction added, as rimRim reports it). rimRim then goes on from
-/// there. *steps receives the number of steps taken.
+/// gradient pointing inwards needs rimRim's model step. A step beyond
+/// kMaxRimStep is clamped to it, and a step that does not decrease psi is
+/// halved (as rimRim does both). Returns the certified answer, or nullopt
+/// with *radial at the last point reached when the steps stall: such a stall,
+/// no positive curvature, or psi not decreasing beyond rounding after the
+/// halvings (a certificate that fails earlier only means more steps; one that
+/// fails at rounding level is reported with the other certificate directions
+/// added, as rimRim reports it). rimRim then goes on from there. *steps
+/// receives the number of steps taken.
 std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double face_lower_bound,
                                   Vec2* radial_io, int* steps) {
   const Mat3& R = pair.R;
@@ -629,11 +631,11 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     // turn's step in lengths, is taken beside the division.
     const double half_sigma = 0.5 * sigma;
     const double denominator = kappa * kappa + half_sigma * half_sigma;
-    if (!(kappa > 0.0 && std::abs(sigma) <= kMaxRimStep * kappa &&
-          denominator >= std::numeric_limits<double>::min())) {
-      break;
-    }
-    const double dtheta = std::abs(sigma) / kappa;
+    if (!(kappa > 0.0 && denominator >= std::numeric_limits<double>::min())) break;
+    // A step beyond kMaxRimStep (far from the optimum, where psi is nearly
+    // flat along the rim) is clamped to it, as rimRim clamps it.
+    const bool clamped = !(std::abs(sigma) <= kMaxRimStep * kappa);
+    const double dtheta = clamped ? kMaxRimStep : std::abs(sigma) / kappa;
     const double distance = std::sqrt(2.0 * psi);
     // Converged along the rim with the gradient pointing inwards: a spurious
     // rim minimum, which rimRim's model step leaves.
@@ -650,28 +652,62 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
         return answer(step);
       }
     }
-    const double inverse = 1.0 / denominator;
-    const double cos = (kappa * kappa - half_sigma * half_sigma) * inverse;
-    const double sin = -(sigma * kappa) * inverse;
-    const double r1_sin = -(r1 * sigma * kappa) * inverse;
-    const Vec2 next_offset2 = cos * offset2 + r1_sin * tangent2;
-    const double next_offset_height = cos * offset_height + r1_sin * tangent_height;
-    // y's own sum, one addition shorter than next_offset2 + y0.
-    const Vec2 next_y = cos * offset2 + (r1_sin * tangent2 + y0);
-    const double next_h = cos * offset_height + (r1_sin * tangent_height + h0);
-    const double next_rho_squared = next_y.squaredNorm();
-    const bool next_over_face = !(next_rho_squared > r2 * r2);
-    const double next_to_rim =
-        next_over_face ? 1.0 : std::sqrt(next_rho_squared) * (r2 / next_rho_squared);
-    const double next_k = 1.0 - next_to_rim;
-    const double next_psi = 0.5 * (next_k * next_k * next_rho_squared + next_h * next_h);
-    if (!(next_psi < psi) || psi - next_psi <= kStagnation * scale * scale) break;
-    radial = Vec2(cos * radial.x() - sin * radial.y(), cos * radial.y() + sin * radial.x());
-    offset2 = next_offset2, offset_height = next_offset_height;
-    y = next_y, h = next_h, over_face = next_over_face;
-    to_rim = next_to_rim, psi = next_psi;
-    step_before = last_step;
-    last_step = dtheta;
+    // The point turned by the Cayley rotation of the step (sigma_step / kappa:
+    // sigma_step = sigma for Newton's step), and psi there.
+    struct Turned {
+      double cos, sin;
+      Vec2 offset2, y;
+      double offset_height, h, rho_squared, to_rim, psi;
+      bool over_face;
+    };
+    const auto turnedBy = [&](double step_sigma, double step_denominator) {
+      Turned next;
+      const double inverse = 1.0 / step_denominator;
+      const double half_step_sigma = 0.5 * step_sigma;
+      next.cos = (kappa * kappa - half_step_sigma * half_step_sigma) * inverse;
+      next.sin = -(step_sigma * kappa) * inverse;
+      const double r1_sin = -(r1 * step_sigma * kappa) * inverse;
+      next.offset2 = next.cos * offset2 + r1_sin * tangent2;
+      next.offset_height = next.cos * offset_height + r1_sin * tangent_height;
+      // y's own sum, one addition shorter than next.offset2 + y0.
+      next.y = next.cos * offset2 + (r1_sin * tangent2 + y0);
+      next.h = next.cos * offset_height + (r1_sin * tangent_height + h0);
+      next.rho_squared = next.y.squaredNorm();
+      next.over_face = !(next.rho_squared > r2 * r2);
+      next.to_rim =
+          next.over_face ? 1.0 : std::sqrt(next.rho_squared) * (r2 / next.rho_squared);
+      const double next_k = 1.0 - next.to_rim;
+      next.psi = 0.5 * (next_k * next_k * next.rho_squared + next.h * next.h);
+      return next;
+    };
+    double step_sigma = sigma;
+    Turned next;
+    if (clamped) {
+      step_sigma = std::copysign(kMaxRimStep * kappa, sigma);
+      next = turnedBy(step_sigma, kappa * kappa + 0.25 * step_sigma * step_sigma);
+    } else {
+      next = turnedBy(sigma, denominator);
+    }
+    double step_taken = dtheta;
+    if (clamped || !(next.psi < psi)) {
+      // Newton's step overshoots (psi's curvature along the rim changes
+      // within the step, e.g. a small disk 2 passed at about its own size):
+      // halved, as rimRim halves it, at most kMaxRimHalvings times.
+      for (int halving = 0; halving < kMaxRimHalvings && !(next.psi < psi); ++halving) {
+        step_sigma *= 0.5, step_taken *= 0.5;
+        next = turnedBy(step_sigma, kappa * kappa + 0.25 * step_sigma * step_sigma);
+      }
+      step_before = 0.0;  // a damped step predicts nothing of the next one
+    } else {
+      step_before = last_step;
+    }
+    if (!(next.psi < psi) || psi - next.psi <= kStagnation * scale * scale) break;
+    radial = Vec2(next.cos * radial.x() - next.sin * radial.y(),
+                  next.cos * radial.y() + next.sin * radial.x());
+    offset2 = next.offset2, offset_height = next.offset_height;
+    y = next.y, h = next.h, over_face = next.over_face;
+    to_rim = next.to_rim, psi = next.psi;
+    last_step = step_taken;
     last_kappa = kappa;
     *steps = step + 1;
   }
