@@ -908,12 +908,11 @@ Solution nearer(const Solution& kept, const Solution& other) {
 /// corners of the lens in which the two projections overlap, as directions
 /// from c1 (unit vectors in plane 1). Newton crawls when the optimum sits at
 /// such a corner (nearly coplanar rims crossing in projection,
-/// docs/exact_distance.md, section 4). Starts from the crossings of rim 1 with
-/// the circle of radius r2 about c's projection (exact for parallel planes),
-/// refined by Newton in the rim angle on rho(theta) - r2, rho being the
-/// distance of rim 1's point from disk 2's axis. Returns how many were written
-/// (0 or 2).
-int lensCorners(const PairInFrame1& pair, double scale, std::array<Vec2, 2>* corners) {
+/// docs/exact_distance.md, section 4). These are the crossings of rim 1 with
+/// the circle of radius r2 about c's projection (exact for parallel planes,
+/// off by O(s^2 r2) otherwise; refineLensCorner corrects them). Returns how
+/// many were written (0 or 2).
+int lensCorners(const PairInFrame1& pair, std::array<Vec2, 2>* corners) {
   const double D = std::sqrt(pair.c.x() * pair.c.x() + pair.c.y() * pair.c.y());
   if (!(D > 0.0)) return 0;
   // Law of cosines, written without the cancellation of r1^2 + D^2 - r2^2.
@@ -923,27 +922,31 @@ int lensCorners(const PairInFrame1& pair, double scale, std::array<Vec2, 2>* cor
   const double sin_half_angle = std::sqrt((1.0 - cos_half_angle) * (1.0 + cos_half_angle));
   const Vec2 towards_c(pair.c.x() / D, pair.c.y() / D);
   const Vec2 across(-towards_c.y(), towards_c.x());
-  int count = 0;
-  for (const double side : {1.0, -1.0}) {
-    Vec2 radial = cos_half_angle * towards_c + (side * sin_half_angle) * across;
-    for (int refinement = 0; refinement < kCornerRefinements; ++refinement) {
-      const Vec2 tangent(-radial.y(), radial.x());
-      const Vec3 from_c2 = Vec3(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0) - pair.c;
-      const Vec3 dx_dtheta(pair.r1 * tangent.x(), pair.r1 * tangent.y(), 0.0);
-      const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));
-      const Vec2 dy_dtheta(pair.R.col(0).dot(dx_dtheta), pair.R.col(1).dot(dx_dtheta));
-      const double rho = y.norm();
-      const double slope = y.dot(dy_dtheta);  // rho * d rho / d theta
-      if (!(rho > 0.0) || slope == 0.0) break;
-      const double dtheta = -(rho - pair.r2) * rho / slope;
-      if (!(std::abs(dtheta) <= kMaxRimStep)) break;
-      const Vec2 rotation = cayleyRotation(dtheta);
-      radial = rotation.x() * radial + rotation.y() * tangent;
-      if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
-    }
-    (*corners)[count++] = radial;
+  (*corners)[0] = cos_half_angle * towards_c + sin_half_angle * across;
+  (*corners)[1] = cos_half_angle * towards_c - sin_half_angle * across;
+  return 2;
+}
+
+/// A lens corner refined by kCornerRefinements Newton steps in the rim angle
+/// on rho(theta) - r2, rho being the distance of rim 1's point from disk 2's
+/// axis. Directions are turned by the Cayley rotation, as in rimRim.
+Vec2 refineLensCorner(const PairInFrame1& pair, double scale, Vec2 radial) {
+  for (int refinement = 0; refinement < kCornerRefinements; ++refinement) {
+    const Vec2 tangent(-radial.y(), radial.x());
+    const Vec3 from_c2 = Vec3(pair.r1 * radial.x(), pair.r1 * radial.y(), 0.0) - pair.c;
+    const Vec3 dx_dtheta(pair.r1 * tangent.x(), pair.r1 * tangent.y(), 0.0);
+    const Vec2 y(pair.R.col(0).dot(from_c2), pair.R.col(1).dot(from_c2));
+    const Vec2 dy_dtheta(pair.R.col(0).dot(dx_dtheta), pair.R.col(1).dot(dx_dtheta));
+    const double rho = y.norm();
+    const double slope = y.dot(dy_dtheta);  // rho * d rho / d theta
+    if (!(rho > 0.0) || slope == 0.0) break;
+    const double dtheta = -(rho - pair.r2) * rho / slope;
+    if (!(std::abs(dtheta) <= kMaxRimStep)) break;
+    const Vec2 rotation = cayleyRotation(dtheta);
+    radial = rotation.x() * radial + rotation.y() * tangent;
+    if (std::abs(dtheta) * pair.r1 <= kStepAtRounding * scale) break;
   }
-  return count;
+  return radial;
 }
 
 /// A rim-rim candidate and whether its points, not only its distance, are
@@ -1022,18 +1025,21 @@ CornerAnswer rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk
 std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double scale,
                                                double face_lower_bound) {
   std::array<Vec2, 2> corners;
-  const int count = lensCorners(pair, scale, &corners);
-  std::array<PointToDisk2, 2> at;
-  for (int k = 0; k < count; ++k) at[k] = evaluate<DistanceTo::rim2>(pair, pair.r1 * corners[k]);
+  const int count = lensCorners(pair, &corners);
   // The nearer corner first: the optimum is usually there, and a proven
-  // corner ends the search.
-  if (count == 2 && at[1].psi < at[0].psi) {
-    std::swap(corners[0], corners[1]);
-    std::swap(at[0], at[1]);
-  }
+  // corner ends the search, with the other neither refined nor evaluated.
+  // At a corner rim 1's point lies over rim 2 to O(s^2 r2), so its distance
+  // to rim 2 is about its height over plane 2, h0 + r1 m2.radial.
+  const auto height = [&](const Vec2& radial) {
+    return std::abs(pair.c1_in_frame2.z() +
+                    pair.r1 * (pair.R(0, 2) * radial.x() + pair.R(1, 2) * radial.y()));
+  };
+  if (count == 2 && height(corners[1]) < height(corners[0])) std::swap(corners[0], corners[1]);
   std::optional<CornerAnswer> best;
   for (int k = 0; k < count; ++k) {
-    const CornerAnswer found = rimRimFromCorner(pair, corners[k], at[k], scale, face_lower_bound);
+    const Vec2 corner = refineLensCorner(pair, scale, corners[k]);
+    const PointToDisk2 at = evaluate<DistanceTo::rim2>(pair, pair.r1 * corner);
+    const CornerAnswer found = rimRimFromCorner(pair, corner, at, scale, face_lower_bound);
     if (found.proven) return found;
     best = CornerAnswer{best ? nearer(best->solution, found.solution) : found.solution, false};
   }
