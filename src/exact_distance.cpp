@@ -376,15 +376,24 @@ double rimNormalPlaneCertificate(const PairInFrame1& pair, const Vec3& x, const 
   return length > 0.0 ? lowerBound(pair, w) / length : 0.0;
 }
 
+/// The certificate at x and q, `distance` = |q - x| apart, given the one along
+/// q - x (`along_separation`): with t1 x t2, then q - x normal to t1, each
+/// tried only while the gap to `distance` is above kGapTolerance * scale
+/// (the usual case needs neither; crossing tangents need no third).
+double withRimDirections(const PairInFrame1& pair, const Vec3& x, const Vec3& q, double distance,
+                         double along_separation, double scale) {
+  const double tolerance = kGapTolerance * scale;
+  if (distance - along_separation <= tolerance) return along_separation;
+  const double lower = std::max(along_separation, tangentCrossCertificate(pair, x, q));
+  if (distance - lower <= tolerance) return lower;
+  return std::max(lower, rimNormalPlaneCertificate(pair, x, q));
+}
+
 /// The best of the certificates along q - x, t1 x t2 and q - x normal to t1.
 double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
                    double face_lower_bound) {
-  const double lower = separationCertificate(pair, x, q, face_lower_bound);
-  // Already within Newton's target of |q - x|: nothing better is needed (the
-  // usual case; this saves the other directions on the iteration's exit path).
-  if ((q - x).norm() - lower <= kGapTolerance * pair.scale()) return lower;
-  return std::max({lower, tangentCrossCertificate(pair, x, q),
-                   rimNormalPlaneCertificate(pair, x, q)});
+  return withRimDirections(pair, x, q, (q - x).norm(),
+                           separationCertificate(pair, x, q, face_lower_bound), pair.scale());
 }
 
 /// Exact line search along `step` from s: psi is convex along the segment, so
@@ -647,8 +656,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       // scale (eps scale / d)^2 for small distances d, along t1 x t2 it does not.
       if (dtheta * r1 <= kStepAtRounding * scale ||
           0.5 * r1 * std::abs(sigma) * dtheta <= kPsiRounding * kEps * scale * distance) {
-        lower = std::max({*lower, tangentCrossCertificate(pair, x_tried, q_tried),
-                          rimNormalPlaneCertificate(pair, x_tried, q_tried)});
+        lower = withRimDirections(pair, x_tried, q_tried, distance_of_points, *lower, scale);
         return answer(step);
       }
     }
@@ -970,10 +978,7 @@ CornerAnswer certifiedCorner(const PairInFrame1& pair, const Vec2& radial, const
   const double distance = (q - x).norm();
   const double tolerance = kGapTolerance * scale;
   const double along_separation = separationCertificate(pair, x, q, face_lower_bound);
-  const double lower = distance - along_separation <= tolerance
-                           ? along_separation
-                           : std::max({along_separation, tangentCrossCertificate(pair, x, q),
-                                       rimNormalPlaneCertificate(pair, x, q)});
+  const double lower = withRimDirections(pair, x, q, distance, along_separation, scale);
   const double direction_rounding =
       distance > 0.0 ? (pair.r1 + pair.r2) * kSeparationRounding * kEps * scale / distance : 0.0;
   const bool proven = distance - lower <= tolerance &&
