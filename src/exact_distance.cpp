@@ -389,6 +389,15 @@ double withRimDirections(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
   return std::max(lower, rimNormalPlaneCertificate(pair, x, q));
 }
 
+/// What the rounding of the direction of q - x, for points `distance` apart,
+/// can cost the certificate along it: the points carry eps * scale of rounding,
+/// so the direction is known to about 2 eps scale / distance, and g is
+/// Lipschitz with constant r1 + r2 at its kinks (kSeparationRounding).
+double separationRounding(const PairInFrame1& pair, double scale, double distance) {
+  return distance > 0.0 ? (pair.r1 + pair.r2) * kSeparationRounding * kEps * scale / distance
+                        : 0.0;
+}
+
 /// The best of the certificates along q - x, t1 x t2 and q - x normal to t1.
 double certificate(const PairInFrame1& pair, const Vec3& x, const Vec3& q,
                    double face_lower_bound) {
@@ -651,6 +660,17 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     if (outward < 0.0 && converging(dtheta, kappa, distance)) break;
     if (converging(dtheta, kappa, distance)) {
       if (!lower && certified()) return answer(step);
+      // Along q - x the gap is open by no more than the rounding of that
+      // direction explains (small distances): the points are proven when the
+      // other directions close it.
+      if (distance_of_points - *lower <= separationRounding(pair, scale, distance_of_points)) {
+        const double best =
+            withRimDirections(pair, x_tried, q_tried, distance_of_points, *lower, scale);
+        if (distance_of_points - best <= gap_tolerance) {
+          lower = best;
+          return answer(step);
+        }
+      }
       // At rounding (rimRim's tests), where rimRim reports the point with the
       // full certificate: along q - x the certificate's rounding grows like
       // scale (eps scale / d)^2 for small distances d, along t1 x t2 it does not.
@@ -979,10 +999,9 @@ CornerAnswer certifiedCorner(const PairInFrame1& pair, const Vec2& radial, const
   const double tolerance = kGapTolerance * scale;
   const double along_separation = separationCertificate(pair, x, q, face_lower_bound);
   const double lower = withRimDirections(pair, x, q, distance, along_separation, scale);
-  const double direction_rounding =
-      distance > 0.0 ? (pair.r1 + pair.r2) * kSeparationRounding * kEps * scale / distance : 0.0;
   const bool proven = distance - lower <= tolerance &&
-                      distance - along_separation <= tolerance + direction_rounding;
+                      distance - along_separation <=
+                          tolerance + separationRounding(pair, scale, distance);
   return {Solution{x, q, distance, DiskPairFeature::rim_rim, 0, lower}, proven};
 }
 
