@@ -955,7 +955,7 @@ int lensCorners(const PairInFrame1& pair, std::array<Vec2, 2>* corners) {
 }
 
 /// A rim-rim candidate and whether its points, not only its distance, are
-/// proven: the certificate (with t1 x t2) proves the distance; along the
+/// proven: the certificate (with its rim directions) proves the distance; along the
 /// points' own separation q - x it must close as well, up to what the rounding
 /// of that direction (kSeparationRounding eps scale / d) costs at g's kinks,
 /// where g is Lipschitz with constant r1 + r2. Without the second test a flat
@@ -1028,7 +1028,7 @@ std::optional<CornerAnswer> rimRimAtLensCorner(const PairInFrame1& pair, double 
   std::array<Vec2, 2> corners;
   const int count = lensCorners(pair, &corners);
   // The nearer corner first: the optimum is usually there, and a proven
-  // corner ends the search, with the other neither refined nor evaluated.
+  // corner ends the search, with the other not evaluated.
   // At a corner rim 1's point lies over rim 2 to O(s^2 r2), so its distance
   // to rim 2 is about its height over plane 2, h0 + r1 m2.radial.
   const auto height = [&](const Vec2& radial) {
