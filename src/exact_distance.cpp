@@ -542,6 +542,16 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
   return directionOf(scaledFootOfDisk2(pair));  // towards rimPointTowardsPlane1()
 }
 
+/// rimRim's `converging` test for a rim step of dtheta >= 0 radians with
+/// curvature kappa (psi'' = r1 kappa) at a point `distance` from disk 2: the
+/// step moves the point by at most kCertifyStep * scale, and the decrease of
+/// psi it predicts, r1 kappa dtheta^2 / 2, is within what the gap tolerance
+/// allows at that distance (d psi = d dd).
+bool rimStepConverging(double r1, double dtheta, double kappa, double distance, double scale) {
+  return dtheta * r1 <= kCertifyStep * scale &&
+         0.5 * r1 * kappa * dtheta * dtheta <= distance * (kGapTolerance * scale);
+}
+
 /// Plain Newton along disk 1's rim, the path nearly every rim-rim query
 /// takes to its answer, written as one short chain of arithmetic (the
 /// iteration is latency-bound): x = r1 radial is carried in disk 2's frame as
@@ -574,7 +584,6 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   const Vec2 y0 = pair.c1_in_frame2.head<2>();
   const double h0 = pair.c1_in_frame2.z();
   const double gap_tolerance = kGapTolerance * scale;
-  const double certify_below = kCertifyStep * scale;
   // The point x = r1 radial in disk 2's frame, y = offset2 + y0 and h =
   // offset_height + h0, with (offset2, offset_height) = r1 (R_xy^T radial,
   // m2.radial); the unit images of t = perp(radial) are taken from radial at
@@ -593,10 +602,8 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   double to_rim = over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
   double psi = 0.5 * ((1.0 - to_rim) * (1.0 - to_rim) * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
-  // rimRim's `converging` test for a step dtheta with curvature kappa.
   const auto converging = [&](double dtheta, double kappa, double distance) {
-    return dtheta * r1 <= certify_below &&
-           0.5 * r1 * kappa * dtheta * dtheta <= distance * gap_tolerance;
+    return rimStepConverging(r1, dtheta, kappa, distance, scale);
   };
   // The certificate at the current point, once tried, and the distance |q - x|
   // it is compared with (the points themselves, not psi: for a rotation that
@@ -685,7 +692,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     struct Turned {
       double cos, sin;
       Vec2 offset2, y;
-      double offset_height, h, rho_squared, to_rim, psi;
+      double offset_height, h, to_rim, psi;
       bool over_face;
     };
     const auto turnedBy = [&](double step_sigma, double step_denominator) {
@@ -700,12 +707,12 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       // y's own sum, one addition shorter than next.offset2 + y0.
       next.y = next.cos * offset2 + (r1_sin * tangent2 + y0);
       next.h = next.cos * offset_height + (r1_sin * tangent_height + h0);
-      next.rho_squared = next.y.squaredNorm();
-      next.over_face = !(next.rho_squared > r2 * r2);
+      const double rho_squared = next.y.squaredNorm();
+      next.over_face = !(rho_squared > r2 * r2);
       next.to_rim =
-          next.over_face ? 1.0 : std::sqrt(next.rho_squared) * (r2 / next.rho_squared);
+          next.over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
       const double next_k = 1.0 - next.to_rim;
-      next.psi = 0.5 * (next_k * next_k * next.rho_squared + next.h * next.h);
+      next.psi = 0.5 * (next_k * next_k * rho_squared + next.h * next.h);
       return next;
     };
     double step_sigma = sigma;
@@ -986,13 +993,11 @@ CornerAnswer certifiedCorner(const PairInFrame1& pair, const Vec2& radial, const
 /// in direction `radial` on phi, half the squared distance to disk 2's rim
 /// circle, which is smooth across the corner (where psi's curvature jumps).
 /// Always a feasible pair (a point of each rim). Once a step would lower phi
-/// by less than the gap tolerance allows (rimNewton's `converging` test), the
+/// by less than the gap tolerance allows (rimStepConverging), the
 /// point is certified without it and returned if proven; else the steps go on
 /// to rounding, and the last point is certified.
 CornerAnswer rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk2 at,
                               double scale, double face_lower_bound) {
-  const double certify_below = kCertifyStep * scale;
-  const double gap_tolerance = kGapTolerance * scale;
   bool tried_unmoved = false;  // certified at the current point already
   for (int iteration = 0; iteration < kMaxCornerIterations; ++iteration) {
     const Vec2 tangent(-radial.y(), radial.x());
@@ -1003,8 +1008,8 @@ CornerAnswer rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk
     const double kappa = pair.r1 * along.curvature + along.outward;
     if (!(kappa > 0.0)) break;
     const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
-    if (!tried_unmoved && std::abs(dtheta) * pair.r1 <= certify_below &&
-        0.5 * pair.r1 * kappa * dtheta * dtheta <= std::sqrt(2.0 * at.psi) * gap_tolerance) {
+    if (!tried_unmoved &&
+        rimStepConverging(pair.r1, std::abs(dtheta), kappa, std::sqrt(2.0 * at.psi), scale)) {
       const CornerAnswer here = certifiedCorner(pair, radial, at, scale, face_lower_bound);
       if (here.proven) return here;
       tried_unmoved = true;
