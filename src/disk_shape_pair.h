@@ -227,7 +227,7 @@ struct GenericDiskShapePair {
   static Separation shortestSeparation(const Target& target, const DiskInShape& disk, double rho,
                                        double prune_slack) {
     const auto depth_along = [&](const Vec3& w) {
-      return disk.support(w) - (w.dot(target.support(-w)) - rho);
+      return disk.support(w) - (leastAlong(target, w) - rho);
     };
     SeparationSearch<decltype(depth_along)> search(disk, depth_along, prune_slack, rho);
     Traits::contactDirections(target, disk, &search);

@@ -10,6 +10,8 @@
 // A Target (the convex set X, in its frame) provides
 //   Projection project(const Vec3& y) const;  // q = proj_X(y), and psi's Hessian
 //   Vec3 support(const Vec3& w) const;        // a point of X maximising w.y
+// and may provide, where it is cheaper than the support point (no division):
+//   double leastAlong(const Vec3& w) const;   // min over X of w.y = -h_X(-w)
 // and the solver works on X inflated by `rho` >= 0 (a sphere is a point
 // inflated, a capsule a segment): dist(x, X + B_rho) = max(dist(x, X) - rho, 0).
 // Where the iteration leaves the certificate open, the solver tries candidates
@@ -353,6 +355,22 @@ inline Mat2 planarHessian(const FactoredHessian& H, const DiskInShape& disk) {
   return block;
 }
 
+template <typename Target, typename = void>
+struct HasLeastAlong : std::false_type {};
+template <typename Target>
+struct HasLeastAlong<Target, std::void_t<decltype(std::declval<const Target&>().leastAlong(
+                                 std::declval<const Vec3&>()))>> : std::true_type {};
+
+/// min over X of w.y = w.support(-w): the Target's leastAlong where it has one.
+template <typename Target>
+double leastAlong(const Target& target, const Vec3& w) {
+  if constexpr (HasLeastAlong<Target>::value) {
+    return target.leastAlong(w);
+  } else {
+    return w.dot(target.support(-w));
+  }
+}
+
 /// The certificate g(w) = min_{y in X + B_rho} w.y - max_{k in disk} w.k
 ///                      = w.support(-w) - rho|w| - h_K(w)
 /// for any w (positively homogeneous: divided by |w| here), a lower bound of
@@ -361,8 +379,7 @@ template <typename Target>
 double certificateAlong(const Target& target, const DiskInShape& disk, double rho, const Vec3& w) {
   const double length_squared = w.squaredNorm();
   if (!(length_squared > 0.0)) return 0.0;
-  const Vec3 lowest = target.support(-w);
-  return (w.dot(lowest) - disk.support(w)) / std::sqrt(length_squared) - rho;
+  return (leastAlong(target, w) - disk.support(w)) / std::sqrt(length_squared) - rho;
 }
 
 /// How close to closing the separation's certificate must be before the other

@@ -86,6 +86,13 @@ struct ConeTarget {
     return w_S.dot(rim) > w_S.dot(apex) ? rim : apex;
   }
 
+  /// min over the cone of w.y: the apex's h w_z or the base rim's
+  /// -radius |w_xy| - h w_z.
+  double leastAlong(const Vec3& w_S) const {
+    const double at_apex = half_length * w_S.z();
+    return std::min(at_apex, -radius * std::sqrt(w_S.x() * w_S.x() + w_S.y() * w_S.y()) - at_apex);
+  }
+
   /// The base: a candidate where a nearly parallel disk's rim crosses its rim.
   std::array<FlatEnd, 1> flatEnds() const { return {FlatEnd{-half_length, radius}}; }
 };

@@ -45,6 +45,12 @@ struct CylinderTarget {
     return rim + Vec3(0.0, 0.0, w_S.z() < 0.0 ? -half_length : half_length);
   }
 
+  /// min over the cylinder of w.y: -radius |w_xy| - half_length |w_z|.
+  double leastAlong(const Vec3& w_S) const {
+    return -radius * std::sqrt(w_S.x() * w_S.x() + w_S.y() * w_S.y()) -
+           half_length * std::abs(w_S.z());
+  }
+
   /// The caps: candidates where a nearly parallel disk's rim crosses a cap's rim.
   std::array<FlatEnd, 2> flatEnds() const {
     return {FlatEnd{-half_length, radius}, FlatEnd{half_length, radius}};
@@ -64,36 +70,52 @@ struct CylinderTarget {
 /// chord-interior m, along the rim for a chord end.
 struct CapPlaneChord {
   bool crosses = false;       ///< the disk meets the plane along a chord
-  Vec3 nearest_axis;          ///< m (crosses only)
+  /// m scaled by tilt_squared = 1 - n_z^2 > 0 (crosses only): the tests on m
+  /// are homogeneous, so they need no division (it would sit on the query's
+  /// latency chain; nearestAxis() divides where m itself is needed).
+  Vec3 scaled_nearest_axis;
+  double tilt_squared = 0.0;
   bool least_at_chord = false;  ///< m is the near part's point nearest the axis
+
+  /// Whether |m_xy| <= radius.
+  bool nearestAxisWithin(double radius) const {
+    const double scaled_radius = radius * tilt_squared;
+    return scaled_nearest_axis.x() * scaled_nearest_axis.x() +
+               scaled_nearest_axis.y() * scaled_nearest_axis.y() <=
+           scaled_radius * scaled_radius;
+  }
+  Vec3 nearestAxis() const { return scaled_nearest_axis / tilt_squared; }
 };
 
 CapPlaneChord capPlaneChord(const DiskInShape& disk, double side, double h) {
   CapPlaneChord chord;
   // Z = e_z - n n_z spans the disk's steepest ascent in z (Z.z = |Z|^2 = 1 - n_z^2);
-  // the plane meets the disk's plane along c + k Z + tau w, w = n x e_z horizontal.
+  // the plane meets the disk's plane along c + k Z + tau w, w = n x e_z horizontal,
+  // k = rise / tilt_squared. Scaled by tilt_squared (|w|^2 = |Z|^2 = tilt_squared):
+  // m' = tilt_squared c + rise Z + tau' w with tau' = clamp(-c.w, +-half_span'),
+  // half_span' = sqrt(r^2 tilt_squared - rise^2) (|tau| |w| <= sqrt(r^2 - k^2 |Z|^2));
+  // c.w is c's offset along the chord from its midpoint (Z.w = 0).
   const Vec3& n = disk.n;
   const double tilt_squared = n.x() * n.x() + n.y() * n.y();
   const double rise = side * h - disk.c.z();
-  if (!(rise * rise < disk.r * disk.r * tilt_squared)) return chord;
+  const double span_squared = disk.r * disk.r * tilt_squared - rise * rise;
+  if (!(span_squared > 0.0)) return chord;
   chord.crosses = true;
+  chord.tilt_squared = tilt_squared;
   const Vec3 Z(-n.x() * n.z(), -n.y() * n.z(), tilt_squared);
   const Vec3 w(n.y(), -n.x(), 0.0);
-  const double k = rise / tilt_squared;
-  const Vec3 midpoint = disk.c + k * Z;
-  // |tau| |w| <= sqrt(r^2 - k^2 |Z|^2), |w|^2 = |Z|^2 = tilt_squared.
-  const double half_span = std::sqrt((disk.r * disk.r - k * rise) / tilt_squared);
-  const double tau_free = -(midpoint.x() * w.x() + midpoint.y() * w.y()) / tilt_squared;
+  const double half_span = std::sqrt(span_squared);
+  const double tau_free = -(disk.c.x() * w.x() + disk.c.y() * w.y());
   const double tau = std::clamp(tau_free, -half_span, half_span);
-  chord.nearest_axis = midpoint + tau * w;
+  chord.scaled_nearest_axis = tilt_squared * disk.c + rise * Z + tau * w;
   // Into the near part: down the steepest descent, or along the rim at a chord end.
   Vec3 inwards = -side * Z;
   if (tau != tau_free) {
-    inwards = n.cross(chord.nearest_axis - disk.c);
+    inwards = n.cross(chord.scaled_nearest_axis - tilt_squared * disk.c);
     if (side * inwards.z() > 0.0) inwards = -inwards;
   }
-  chord.least_at_chord =
-      chord.nearest_axis.x() * inwards.x() + chord.nearest_axis.y() * inwards.y() >= 0.0;
+  const Vec3& m = chord.scaled_nearest_axis;
+  chord.least_at_chord = m.x() * inwards.x() + m.y() * inwards.y() >= 0.0;
   return chord;
 }
 
@@ -138,8 +160,8 @@ struct CylinderTraits {
     for (const double side : {centre_side, -centre_side}) {
       const CapPlaneChord chord = capPlaneChord(disk, side, h);
       if (chord.crosses) {
-        const Vec3& m = chord.nearest_axis;
-        if (m.x() * m.x() + m.y() * m.y() <= radius * radius) {
+        if (chord.nearestAxisWithin(radius)) {
+          const Vec3 m = chord.nearestAxis();
           const Vec3 on_cap(m.x(), m.y(), side * h);
           return certifiedOrBound(0.0, 0.0, on_cap, on_cap, scale);
         }
