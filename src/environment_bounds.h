@@ -216,6 +216,27 @@ LeafToDisk certifiedAlongItself(const DiskInShape& disk, LeastAlong&& least_alon
   return certifiedOrBound(lower, upper, p_disk, p_leaf, scale, mismatch);
 }
 
+/// Raises `lower` to the certificate along a segment's pair, in the direction
+/// SegmentToDisk::certificateDirection gives (the one segmentToDisk's
+/// precision is chosen for), `least_along` as certifyAlongPair's.
+template <typename LeastAlong>
+void certifyAlongSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
+                             const SegmentToDisk& pair, double* lower) {
+  const Vec3 w = pair.certificateDirection();
+  const double length = w.norm();
+  if (!(length > 0.0)) return;
+  *lower = std::max(*lower, (least_along(w) - disk.support(w)) / length);
+}
+
+/// certifiedAlongItself for a segment's pair (certifyAlongSegmentPair).
+template <typename LeastAlong>
+LeafToDisk certifiedSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
+                                const SegmentToDisk& pair, double scale, double mismatch = 0.0) {
+  double lower = -std::numeric_limits<double>::infinity();
+  certifyAlongSegmentPair(disk, least_along, pair, &lower);
+  return certifiedOrBound(lower, pair.distance, pair.p_disk, pair.p_segment, scale, mismatch);
+}
+
 /// The stretch [low, high] of tau for which the in-plane point s + tau along
 /// lies within the rim (s itself within it, but for rounding): between the
 /// roots of |s + tau along|^2 = r^2. None for along = 0.
@@ -231,7 +252,7 @@ inline std::optional<std::pair<double, double>> stretchWithinRim(const DiskInSha
 /// against an edge, which neither a vertex nor a face settles), in order: the
 /// nearest pair of the disk and each segment edges[i] (segmentToDisk) replaces
 /// the upper bound when nearer, and the certificate along its direction raises
-/// `lower` (certifyAlongPair); the rest are skipped once `lower` reaches
+/// `lower` (certifyAlongSegmentPair); the rest are skipped once `lower` reaches
 /// `worth_below` (a traversal drops a leaf bounded at or above its best).
 /// Worth it (edgesWorthTrying) while the bounds are apart by more than the gap
 /// tolerance and `lower` is below `worth_below`.
@@ -249,7 +270,7 @@ void tryEdges(const DiskInShape& disk, const Vec3 (&edges)[kEdges][2], LeastAlon
       *upper_disk = edge.p_disk;
       *upper_leaf = edge.p_segment;
     }
-    certifyAlongPair(disk, least_along, edge.distance, edge.p_disk, edge.p_segment, lower);
+    certifyAlongSegmentPair(disk, least_along, edge, lower);
   }
 }
 
@@ -678,7 +699,7 @@ inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, cons
       from[i] = o[i] - h[i];
       to[i] = o[i] + h[i];
       const SegmentToDisk edge = segmentToDisk(disk, from, to);
-      if (LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
+      if (LeafToDisk by_edge = certifiedSegmentPair(disk, least_along, edge, scale);
           by_edge.exact) {
         return by_edge;
       }

@@ -25,8 +25,15 @@
 //
 // Guarantee: none by itself. The answer is a pair of points, one on each set,
 // so its distance is an upper bound; callers certify it with the duality
-// bound dist >= min_X w.y - h_K(w) along w = (s - p) / |s - p| and keep it only
-// when the two meet within kShapeGapTolerance of the scene.
+// bound dist >= min_X w.y - h_K(w) along certificateDirection() (s - p, with
+// its component along the segment dropped where t is inside (0, 1)) and keep
+// it only when the two meet within kShapeGapTolerance of the scene.
+// Precision: the iteration stops where a point eps off the optimum costs that
+// certificate O(scale (eps / d)^2), under 1e-14 of the scene
+// (kSegmentStepOverDistance); along s - p itself it would cost
+// O(eps |b - a| / d), first order, as X's least w.y has a kink at the optimal
+// w (normal to the segment, where its ends tie), and so would need t to the
+// last bits.
 // Degenerate cases: a zero-length segment is its point (t = 0); a segment
 // meeting the disk gives distance 0 with s = p up to rounding (nothing to
 // certify: callers decide meetings otherwise). Ties: where g is flat (a
@@ -46,6 +53,14 @@ namespace internal {
 /// error after a step s is about M s^2 (M = |g'''| / (2 g''), of order 1 for
 /// t in [0, 1]), so ~1e-18 here, under double's rounding of t.
 constexpr double kSegmentNewtonStepTolerance = 1e-9;
+/// So does a step s with s^2 |b - a| <= this times the distance d at t: the
+/// point is then off the optimum by about eps = M s^2 |b - a| <= 1e-9 M d,
+/// which lengthens the pair by O(eps^2 / d) and turns its direction in the
+/// plane normal to the segment by O(eps / d), costing the certificate along
+/// certificateDirection() O(scale (eps / d)^2), 1e-18 M^2 of the scene. Away
+/// from contact it ends the iteration a step before the absolute tolerance
+/// (test/test_disk_shape_cases.cpp, EdgePairsSettleInClosedForm).
+constexpr double kSegmentStepOverDistance = 1e-9;
 /// A bisection step in t below this ends it (bisection gains one bit per
 /// step): a few ulps of t in [0, 1].
 constexpr double kSegmentStepTolerance = 4 * std::numeric_limits<double>::epsilon();
@@ -57,6 +72,19 @@ struct SegmentToDisk {
   double t = 0.0;
   double distance = 0.0;  ///< |p_segment - p_disk|
   Vec3 p_disk{Vec3::Zero()}, p_segment{Vec3::Zero()};
+  Vec3 along{Vec3::Zero()};  ///< b - a
+
+  /// The direction to certify the pair along: p_segment - p_disk, less its
+  /// component along the segment where t is inside (0, 1). There the optimal
+  /// separation is normal to the segment, and the certificate is smooth in
+  /// the directions normal to it nearby, along which every point of the
+  /// segment is equally low (see the header's Precision). Not normalised (scaled by |b - a|^2, which
+  /// keeps a division off the query's chain); zero when the points meet.
+  Vec3 certificateDirection() const {
+    const Vec3 separation = p_segment - p_disk;
+    if (!(t > 0.0 && t < 1.0)) return separation;
+    return along.squaredNorm() * separation - separation.dot(along) * along;
+  }
 };
 
 /// The pair of nearest points of the disk and the segment a b (see above).
@@ -66,6 +94,7 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
                y0 = disk.v.dot(from_centre);
   const double dz = disk.n.dot(step), dx = disk.u.dot(step), dy = disk.v.dot(step);
   const double planar_squared = dx * dx + dy * dy;
+  const double length_squared = planar_squared + dz * dz;
   // g'(t).
   const auto slope = [&](double t) {
     const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
@@ -79,19 +108,20 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
   // and the step is -rho^2 (rho g') / (rho^3 g''): one division after the
   // square root on the iteration's chain, where g' and g'' take two.
   struct NewtonStep {
-    double scaled_slope, step;
+    double scaled_slope, step, distance_squared;  // distance_squared = 2 g(t)
   };
   const auto newtonStep = [&](double t) {
     const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
     const double rho_squared = x * x + y * y;
     const double rho = std::sqrt(rho_squared);
     const double rim_gap = rho - disk.r;
-    if (!(rim_gap > 0.0)) return NewtonStep{z * dz, -(z * dz) / (dz * dz)};
+    if (!(rim_gap > 0.0)) return NewtonStep{z * dz, -(z * dz) / (dz * dz), z * z};
     const double m = x * dx + y * dy;
     const double scaled_slope = z * dz * rho + rim_gap * m;
     const double scaled_curvature =
         (dz * dz * rho + rim_gap * planar_squared) * rho_squared + disk.r * m * m;
-    return NewtonStep{scaled_slope, -rho_squared * scaled_slope / scaled_curvature};
+    return NewtonStep{scaled_slope, -rho_squared * scaled_slope / scaled_curvature,
+                      z * z + rim_gap * rim_gap};
   };
 
   double t;
@@ -137,7 +167,12 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
         (at.scaled_slope < 0.0 ? low : high) = t;
         const double next = t + at.step;
         if (next > low && next < high) {
-          const bool converged = std::abs(next - t) <= kSegmentNewtonStepTolerance;
+          // s^2 |b - a| <= k d, squared: no square root.
+          const double taken = (next - t) * (next - t);
+          const bool converged =
+              std::abs(next - t) <= kSegmentNewtonStepTolerance ||
+              taken * taken * length_squared <=
+                  kSegmentStepOverDistance * kSegmentStepOverDistance * at.distance_squared;
           t = next;
           if (converged) break;
         } else if (std::abs(next - t) <= kSegmentStepTolerance) {
@@ -159,6 +194,7 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
   answer.p_disk = disk.point(
       disk.clampedToRim(Vec2(x0 + t * dx, y0 + t * dy)));
   answer.distance = (answer.p_segment - answer.p_disk).norm();
+  answer.along = step;
   return answer;
 }
 

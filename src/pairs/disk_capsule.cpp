@@ -43,8 +43,8 @@ struct CapsuleTraits {
   static double inflation(const fcl::Capsule<S>& capsule) { return double(capsule.radius); }
   /// The axis segment's nearest pair (segmentToDisk), moved by the radius
   /// along w (from the disk's point to the segment's), certified along the
-  /// unit w: min over the capsule of w.y - h_K(w), its core's support less the
-  /// radius (certificateAlong without renormalising w). A disk point within
+  /// pair's certificateDirection: min over the capsule of w.y - h_K(w), its
+  /// core's support less the radius. A disk point within
   /// the radius of the segment is a common point (distance 0, that point as
   /// both); pairs apart by less than touching are left to the generic
   /// solver. Flattened: the
@@ -60,8 +60,10 @@ struct CapsuleTraits {
     if (upper <= 0.0) return meetingAt(axis.p_disk);
     if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
     const Vec3 w = (axis.p_segment - axis.p_disk) / axis.distance;
-    const double lower = w.dot(target(capsule).support(-w)) - radius - disk.support(w);
-    return certifiedOrBound(lower, upper, axis.p_disk, axis.p_segment - radius * w, scale);
+    double lower = -std::numeric_limits<double>::infinity();
+    certifyAlongSegmentPair(
+        disk, [&](const Vec3& v) { return v.dot(target(capsule).support(-v)); }, axis, &lower);
+    return certifiedOrBound(lower - radius, upper, axis.p_disk, axis.p_segment - radius * w, scale);
   }
   static SegmentTarget target(const fcl::Capsule<S>& capsule) {
     return SegmentTarget{0.5 * double(capsule.lz)};

@@ -949,7 +949,8 @@ struct ConvexTraits {
         const ConvexEdge& on = hull.geometry.edges[face.first_edge + at_boundary.index];
         const SegmentToDisk edge = segmentToDisk(disk, on.from, on.to);
         next = edge.p_disk;
-        const LeafToDisk by_edge = certified(edge.distance, edge.p_disk, edge.p_segment);
+        const LeafToDisk by_edge =
+            certifiedSegmentPair(disk, least_along, edge, scale, hull.supportMismatch());
         if (by_edge.exact) return by_edge;
         if (const auto common = segmentCrossingWithinRim(disk, on.from, on.to)) {
           return meetingAt(disk, *common);
