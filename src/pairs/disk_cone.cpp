@@ -206,7 +206,8 @@ struct ConeTraits {
   ///   tried; a disk whose least point over the side's line has its foot past
   ///   the base's rim or the apex goes to that end's case;
   /// - the base, a disk (diskAgainstFlatEnd: exact where the certificate along
-  ///   the disk-base pair closes), for a centre beyond the base's plane, or
+  ///   the disk-base pair closes; for a disk wholly beyond the base's plane
+  ///   the pair's own, diskBeyondFlatEnd), for a centre beyond the base's plane, or
   ///   beside the cone with its nearest cone point at the base's rim (in the
   ///   meridian half-plane, past the slant side's end B = (radius, -h) along
   ///   it) and the disk reaching below the base's plane;
@@ -275,10 +276,16 @@ struct ConeTraits {
       const LeafToDisk apex = against_apex();
       return apex.exact ? apex : against_side();
     }
-    if (c.z() < -h) return against_base();
+    const double normal_tilt = Vec2(disk.u.z(), disk.v.z()).norm();  // |P_disk z|
+    if (c.z() < -h) {
+      if (c.z() + disk.r * normal_tilt < -h) {  // wholly beyond the base's plane
+        tried->base = true;
+        return diskBeyondFlatEnd(disk, cone_target.flatEnds()[0], scale);
+      }
+      return against_base();
+    }
     const double centre_rho = std::sqrt(c.x() * c.x() + c.y() * c.y());
     const bool nearest_base_rim = (centre_rho - radius) * radius >= 2.0 * h * (c.z() + h);
-    const double normal_tilt = Vec2(disk.u.z(), disk.v.z()).norm();  // |P_disk z|
     if (centre_rho > radius && nearest_base_rim && c.z() - disk.r * normal_tilt < -h) {
       return against_base();
     }

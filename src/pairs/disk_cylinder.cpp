@@ -139,7 +139,8 @@ struct CylinderTraits {
   ///   half_length, it is on the cylinder, and the capsule's answer and
   ///   certificate are the cylinder's;
   /// - a cap (diskAgainstFlatEnd): where the disk-disk pair of the disk and
-  ///   a cap is the cylinder's, the certificate along it closes.
+  ///   a cap is the cylinder's, the certificate along it closes; for a disk
+  ///   wholly beyond a cap's plane the pair's own (diskBeyondFlatEnd).
   /// Which to try first is read off where the disk crosses the caps' planes
   /// (capPlaneChord): a chord point within the radius is a common point; a cap
   /// goes first when the disk lies wholly beyond its plane or its chord holds
@@ -157,6 +158,7 @@ struct CylinderTraits {
     };
     const double centre_side = disk.c.z() < 0.0 ? -1.0 : 1.0;
     double cap_first = 0.0;  // the side of the cap tried first, 0 for the wall
+    bool cap_tried = false;
     for (const double side : {centre_side, -centre_side}) {
       const CapPlaneChord chord = capPlaneChord(disk, side, h);
       if (chord.crosses) {
@@ -167,11 +169,15 @@ struct CylinderTraits {
         }
         if (chord.least_at_chord) cap_first = side;
       } else if (side * disk.c.z() > h) {
-        cap_first = side;  // wholly beyond this cap's plane
+        // Wholly beyond this cap's plane.
+        const LeafToDisk cap = diskBeyondFlatEnd(disk, FlatEnd{side * h, radius}, scale);
+        if (cap.exact) return cap;
+        cap_first = side;
+        cap_tried = true;
       }
       if (cap_first != 0.0) break;
     }
-    if (cap_first != 0.0) {
+    if (cap_first != 0.0 && !cap_tried) {
       const LeafToDisk cap = against_cap(cap_first);
       if (cap.exact) return cap;
     }

@@ -26,5 +26,18 @@ LeafToDisk diskAgainstFlatEnd(const DiskInShape& disk, const Target& target, con
   return certifiedOrBound(lower, pair.distance, pair.q, pair.p, scale);
 }
 
+/// `disk` wholly beyond the plane of `end` (on the side away from the shape),
+/// for a shape that lies over its end (its projection onto the end's plane is
+/// the end: a cylinder's caps, a cone's base). Every point beyond the plane
+/// then has its nearest point of the shape on the end (a shape point moved
+/// along the plane's normal onto the end comes nearer), so the disk-end
+/// pair's distance and its own certificate are the shape's, and no
+/// certificate with the shape's support is needed: exact when the pair's
+/// closes to kShapeGapTolerance * scale, else not, with it as the bound.
+inline LeafToDisk diskBeyondFlatEnd(const DiskInShape& disk, const FlatEnd& end, double scale) {
+  const DiskPairAnswer pair = diskPairWithFlatEnd(disk, end);
+  return certifiedOrBound(pair.lower_bound, pair.distance, pair.q, pair.p, scale);
+}
+
 }  // namespace internal
 }  // namespace fcl_disk
