@@ -613,12 +613,20 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   std::optional<double> lower;
   Vec3 x_tried, q_tried;
   double distance_of_points = 0.0;
+  // The certificate is separationCertificate's, max(face_lower_bound, g(q -
+  // x) / |q - x|); its test is taken times |q - x|, which keeps the division
+  // off the test's chain (only the returned bound waits for it).
   const auto certified = [&]() -> bool {
     x_tried = Vec3(r1 * radial.x(), r1 * radial.y(), 0.0);
     q_tried = pair.pointOfDisk2(to_rim * y);
-    distance_of_points = (q_tried - x_tried).norm();
-    lower = separationCertificate(pair, x_tried, q_tried, face_lower_bound);
-    return distance_of_points - *lower <= gap_tolerance;
+    const Vec3 separation = q_tried - x_tried;
+    distance_of_points = separation.norm();
+    const double along = lowerBound(pair, separation);
+    lower = distance_of_points > 0.0
+                ? std::max(face_lower_bound, along / distance_of_points)
+                : face_lower_bound;
+    return distance_of_points - face_lower_bound <= gap_tolerance ||
+           distance_of_points * distance_of_points - along <= gap_tolerance * distance_of_points;
   };
   const auto answer = [&](int steps_taken) {
     return Solution{x_tried, q_tried, distance_of_points, DiskPairFeature::rim_rim,
