@@ -179,6 +179,31 @@ inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_dis
   return answer;
 }
 
+/// certifiedOrBound with the lower bound given as numerator / length: a
+/// certificate along an unnormalised direction of that length (positively
+/// homogeneous). The test is taken times the length, so the division, which
+/// only the returned bound needs, is off the test's chain. A length that is
+/// not positive gives no bound.
+inline LeafToDisk certifiedOrBoundAlong(double numerator, double length, double upper,
+                                        const Vec3& p_disk, const Vec3& p_leaf, double scale,
+                                        double mismatch = 0.0) {
+  LeafToDisk answer;
+  const bool positive = length > 0.0;
+  const double lower =
+      positive ? numerator / length : -std::numeric_limits<double>::infinity();
+  if (positive &&
+      upper * length - numerator <= (kShapeGapTolerance * scale + mismatch) * length) {
+    answer.exact = true;
+    answer.distance = upper;
+    answer.certified = std::min(lower, upper);
+    answer.p_disk = p_disk;
+    answer.p_leaf = p_leaf;
+    return answer;
+  }
+  answer.distance = lower > 0.0 ? lower : 0.0;
+  return answer;
+}
+
 /// A solver's answer (nearest points, distance, certificate) as an exact leaf.
 inline LeafToDisk exactLeafOf(const DiskShapeSolution& solution) {
   LeafToDisk answer;
@@ -228,13 +253,21 @@ void certifyAlongSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
   *lower = std::max(*lower, (least_along(w) - disk.support(w)) / length);
 }
 
-/// certifiedAlongItself for a segment's pair (certifyAlongSegmentPair).
+/// certifiedAlongItself for a segment's pair, along its certificateDirection
+/// (certifiedOrBoundAlong), X `inflation` thick about `least_along`'s set (a
+/// capsule's radius): the pair's leaf point moved that far towards the disk.
 template <typename LeastAlong>
 LeafToDisk certifiedSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
-                                const SegmentToDisk& pair, double scale, double mismatch = 0.0) {
-  double lower = -std::numeric_limits<double>::infinity();
-  certifyAlongSegmentPair(disk, least_along, pair, &lower);
-  return certifiedOrBound(lower, pair.distance, pair.p_disk, pair.p_segment, scale, mismatch);
+                                const SegmentToDisk& pair, double scale, double mismatch = 0.0,
+                                double inflation = 0.0) {
+  const Vec3 w = pair.certificateDirection();
+  const double length = w.norm();
+  const double upper = pair.distance - inflation;
+  const Vec3 p_leaf = inflation > 0.0 ? Vec3(pair.p_segment - (inflation / pair.distance) *
+                                                                 (pair.p_segment - pair.p_disk))
+                                       : pair.p_segment;
+  return certifiedOrBoundAlong(least_along(w) - disk.support(w) - inflation * length, length,
+                               upper, pair.p_disk, p_leaf, scale, mismatch);
 }
 
 /// The stretch [low, high] of tau for which the in-plane point s + tau along

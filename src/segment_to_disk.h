@@ -64,6 +64,11 @@ constexpr double kSegmentStepOverDistance = 1e-9;
 /// A bisection step in t below this ends it (bisection gains one bit per
 /// step): a few ulps of t in [0, 1].
 constexpr double kSegmentStepTolerance = 4 * std::numeric_limits<double>::epsilon();
+/// The iteration's quantities reach the fifth power of lengths (the Newton
+/// step's rho^3 g''): lengths outside this range (scenes beyond 1e50 or under
+/// 1e-50 of the caller's unit) are first divided by the largest of them, so
+/// that those powers stay normal doubles (t does not depend on the unit).
+constexpr double kSegmentUnitRangeLow = 1e-50, kSegmentUnitRangeHigh = 1e50;
 /// A cap on the iterations: Newton converges in a handful; bisection halves
 /// the bracket each time, so 64 steps reach the tolerance from any bracket.
 constexpr int kMaxSegmentIterations = 64;
@@ -72,34 +77,45 @@ struct SegmentToDisk {
   double t = 0.0;
   double distance = 0.0;  ///< |p_segment - p_disk|
   Vec3 p_disk{Vec3::Zero()}, p_segment{Vec3::Zero()};
-  Vec3 along{Vec3::Zero()};  ///< b - a
+  Vec3 along{Vec3::Zero()};          ///< b - a
+  double inverse_along_squared = 0;  ///< 1 / |b - a|^2 (0 for a = b), off the query's chain
 
   /// The direction to certify the pair along: p_segment - p_disk, less its
   /// component along the segment where t is inside (0, 1). There the optimal
   /// separation is normal to the segment, and the certificate is smooth in
   /// the directions normal to it nearby, along which every point of the
-  /// segment is equally low (see the header's Precision). Not normalised (scaled by |b - a|^2, which
-  /// keeps a division off the query's chain); zero when the points meet.
+  /// segment is equally low (see the header's Precision). Not normalised
+  /// (of the separation's size); zero when the points meet.
   Vec3 certificateDirection() const {
     const Vec3 separation = p_segment - p_disk;
     if (!(t > 0.0 && t < 1.0)) return separation;
-    return along.squaredNorm() * separation - separation.dot(along) * along;
+    return separation - (separation.dot(along) * inverse_along_squared) * along;
   }
 };
 
 /// The pair of nearest points of the disk and the segment a b (see above).
 inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const Vec3& b) {
   const Vec3 from_centre = a - disk.c, step = b - a;
-  const double z0 = disk.n.dot(from_centre), x0 = disk.u.dot(from_centre),
-               y0 = disk.v.dot(from_centre);
-  const double dz = disk.n.dot(step), dx = disk.u.dot(step), dy = disk.v.dot(step);
+  const Vec2 planar_from_centre(disk.u.dot(from_centre), disk.v.dot(from_centre));
+  const Vec2 planar_step(disk.u.dot(step), disk.v.dot(step));
+  // The iteration's lengths, in the caller's unit unless kSegmentUnitRange*
+  // says otherwise.
+  double z0 = disk.n.dot(from_centre), x0 = planar_from_centre.x(), y0 = planar_from_centre.y();
+  double dz = disk.n.dot(step), dx = planar_step.x(), dy = planar_step.y();
+  double radius = disk.r;
+  const double extent = std::max({std::abs(z0), std::abs(x0), std::abs(y0), std::abs(dz),
+                                  std::abs(dx), std::abs(dy), radius});
+  if (extent > 0.0 && !(extent >= kSegmentUnitRangeLow && extent <= kSegmentUnitRangeHigh)) {
+    const double unit = 1.0 / extent;
+    z0 *= unit, x0 *= unit, y0 *= unit, dz *= unit, dx *= unit, dy *= unit, radius *= unit;
+  }
   const double planar_squared = dx * dx + dy * dy;
   const double length_squared = planar_squared + dz * dz;
   // g'(t).
   const auto slope = [&](double t) {
     const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
     const double rho = std::sqrt(x * x + y * y);
-    const double rim_gap = rho - disk.r;
+    const double rim_gap = rho - radius;
     return rim_gap > 0.0 ? z * dz + rim_gap * (x * dx + y * dy) / rho : z * dz;
   };
   // Newton's step -g'/g'' at t, and g' times a positive factor (its sign keeps
@@ -114,12 +130,12 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
     const double z = z0 + t * dz, x = x0 + t * dx, y = y0 + t * dy;
     const double rho_squared = x * x + y * y;
     const double rho = std::sqrt(rho_squared);
-    const double rim_gap = rho - disk.r;
+    const double rim_gap = rho - radius;
     if (!(rim_gap > 0.0)) return NewtonStep{z * dz, -(z * dz) / (dz * dz), z * z};
     const double m = x * dx + y * dy;
     const double scaled_slope = z * dz * rho + rim_gap * m;
     const double scaled_curvature =
-        (dz * dz * rho + rim_gap * planar_squared) * rho_squared + disk.r * m * m;
+        (dz * dz * rho + rim_gap * planar_squared) * rho_squared + radius * m * m;
     return NewtonStep{scaled_slope, -rho_squared * scaled_slope / scaled_curvature,
                       z * z + rim_gap * rim_gap};
   };
@@ -138,7 +154,7 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
     // The stretch over the face, [t_in, t_out] within [0, 1]: the roots of
     // A t^2 + 2 B t + (C - r^2), the larger-magnitude one first (no
     // cancellation).
-    const double B = x0 * dx + y0 * dy, C_minus_r2 = x0 * x0 + y0 * y0 - disk.r * disk.r;
+    const double B = x0 * dx + y0 * dy, C_minus_r2 = x0 * x0 + y0 * y0 - radius * radius;
     const double discriminant = B * B - planar_squared * C_minus_r2;
     if (planar_squared > 0.0 && discriminant >= 0.0) {
       const double root = std::sqrt(discriminant);
@@ -192,9 +208,11 @@ inline SegmentToDisk segmentToDisk(const DiskInShape& disk, const Vec3& a, const
   answer.t = t;
   answer.p_segment = a + t * step;
   answer.p_disk = disk.point(
-      disk.clampedToRim(Vec2(x0 + t * dx, y0 + t * dy)));
+      disk.clampedToRim(planar_from_centre + t * planar_step));
   answer.distance = (answer.p_segment - answer.p_disk).norm();
   answer.along = step;
+  const double along_squared = step.squaredNorm();
+  answer.inverse_along_squared = along_squared > 0.0 ? 1.0 / along_squared : 0.0;
   return answer;
 }
 

@@ -1379,8 +1379,6 @@ TEST(DiskShapeCases, ConvexWithNonPlanarFacesIsExactToItsThickness) {
   EXPECT_GE(overlapping, 50);
 }
 
-}  // namespace
-
 // The closed forms of the shapes with straight edges (a capsule's axis, a box's,
 // a triangle's and a Convex's edges) pair the disk with an edge by the segment
 // solver and certify the pair along its separation with the component along
@@ -1389,35 +1387,47 @@ TEST(DiskShapeCases, ConvexWithNonPlanarFacesIsExactToItsThickness) {
 // a kink where the edge's ends tie makes the certificate first-order in the
 // point's error, and about one separated pose in seven would miss the closed
 // form for the generic solver. On random poses (disk r = 0.5 rotated at
-// random, centre in the unit ball; shapes of size ~0.5 at the origin) all but
-// one in a thousand separated pairs settle in closed form (iterations == 0),
-// all certified to 1e-12.
+// random, centre in the unit ball; shapes of size ~0.5 at the origin), the
+// whole scene scaled by 1e-80, 1 and 1e80 (where squares of squares of
+// lengths would leave double's range), all but one in a thousand separated
+// pairs settle in closed form (iterations == 0), all certified to 1e-12.
 TEST(DiskShapeCases, EdgePairsSettleInClosedForm) {
   fcl_disk_test::Random random(20261130);
-  const std::vector<std::pair<std::string, std::shared_ptr<fcl::ShapeBase<double>>>> shapes = {
-      {"box", std::make_shared<fcl::Box<double>>(0.6, 0.5, 0.4)},
-      {"capsule", std::make_shared<fcl::Capsule<double>>(0.2, 0.6)},
-      {"triangle", std::make_shared<fcl::TriangleP<double>>(
-                       Vector3d(0.4, -0.1, 0.1), Vector3d(-0.3, 0.35, -0.05), Vector3d(-0.1, -0.4, 0.2))},
-      {"convex", std::make_shared<fcl::Convex<double>>(boxAsConvex<double>(0.6, 0.5, 0.4))}};
-  constexpr int kPoses = 20000;
+  constexpr int kPoses = 8000;
   constexpr double kMostInClosedForm = 0.999;
-  for (const auto& [name, shape] : shapes) {
-    int separated = 0, in_closed_form = 0;
-    for (int i = 0; i < kPoses; ++i) {
-      Transform3d X_WD = kIdentity;
-      X_WD.linear() = random.rotation();
-      X_WD.translation() = random.inBall(1.0);
-      const auto result = fcl_disk_test::oracle::withShapeClass(*shape, [&](const auto& typed) {
-        return fcl_disk::diskShapeDistance(0.5, X_WD, typed, kIdentity);
-      });
-      if (!(result.distance > 0.0)) continue;
-      ++separated;
-      in_closed_form += result.iterations == 0;
-      const double scale = 0.5 + 0.5 + X_WD.translation().norm();  // r + R_S + |c_D - c_S|
-      ASSERT_LE(result.distance - result.lower_bound, kExact * scale) << name << " pose " << i;
+  for (const double k : {1e-80, 1.0, 1e80}) {
+    auto corners = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
+        k * Vector3d(-0.3, -0.25, -0.2), k * Vector3d(0.3, -0.25, -0.2), k * Vector3d(0.3, 0.25, -0.2),
+        k * Vector3d(-0.3, 0.25, -0.2), k * Vector3d(-0.3, -0.25, 0.2), k * Vector3d(0.3, -0.25, 0.2),
+        k * Vector3d(0.3, 0.25, 0.2), k * Vector3d(-0.3, 0.25, 0.2)});
+    const std::vector<std::pair<std::string, std::shared_ptr<fcl::ShapeBase<double>>>> shapes = {
+        {"box", std::make_shared<fcl::Box<double>>(0.6 * k, 0.5 * k, 0.4 * k)},
+        {"capsule", std::make_shared<fcl::Capsule<double>>(0.2 * k, 0.6 * k)},
+        {"triangle", std::make_shared<fcl::TriangleP<double>>(k * Vector3d(0.4, -0.1, 0.1),
+                                                               k * Vector3d(-0.3, 0.35, -0.05),
+                                                               k * Vector3d(-0.1, -0.4, 0.2))},
+        {"convex", std::make_shared<fcl::Convex<double>>(corners, 6, boxFaceList())}};
+    for (const auto& [name, shape] : shapes) {
+      int separated = 0, in_closed_form = 0;
+      for (int i = 0; i < kPoses; ++i) {
+        Transform3d X_WD = kIdentity;
+        X_WD.linear() = random.rotation();
+        X_WD.translation() = k * random.inBall(1.0);
+        const auto result = fcl_disk_test::oracle::withShapeClass(*shape, [&](const auto& typed) {
+          return fcl_disk::diskShapeDistance(0.5 * k, X_WD, typed, kIdentity);
+        });
+        if (!(result.distance > 0.0)) continue;
+        ++separated;
+        in_closed_form += result.iterations == 0;
+        // r + R_S + |c_D - c_S|, R_S <= 0.5 k
+        const double scale = k + X_WD.translation().norm();
+        ASSERT_LE(result.distance - result.lower_bound, kExact * scale)
+            << name << " at scale " << k << ", pose " << i;
+      }
+      EXPECT_GT(separated, kPoses / 2) << name << " at scale " << k;
+      EXPECT_GE(in_closed_form, kMostInClosedForm * separated) << name << " at scale " << k;
     }
-    EXPECT_GT(separated, kPoses / 2) << name;
-    EXPECT_GE(in_closed_form, kMostInClosedForm * separated) << name;
   }
 }
+
+}  // namespace

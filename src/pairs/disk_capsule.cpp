@@ -59,11 +59,9 @@ struct CapsuleTraits {
     const double upper = axis.distance - radius;
     if (upper <= 0.0) return meetingAt(axis.p_disk);
     if (!(upper > kShapeTouchingTolerance * scale)) return LeafToDisk{};
-    const Vec3 w = (axis.p_segment - axis.p_disk) / axis.distance;
-    double lower = -std::numeric_limits<double>::infinity();
-    certifyAlongSegmentPair(
-        disk, [&](const Vec3& v) { return v.dot(target(capsule).support(-v)); }, axis, &lower);
-    return certifiedOrBound(lower - radius, upper, axis.p_disk, axis.p_segment - radius * w, scale);
+    return certifiedSegmentPair(
+        disk, [&](const Vec3& v) { return v.dot(target(capsule).support(-v)); }, axis, scale,
+        /*mismatch=*/0.0, /*inflation=*/radius);
   }
   static SegmentTarget target(const fcl::Capsule<S>& capsule) {
     return SegmentTarget{0.5 * double(capsule.lz)};

@@ -22,8 +22,9 @@ LeafToDisk diskAgainstFlatEnd(const DiskInShape& disk, const Target& target, con
                               double scale) {
   const DiskPairAnswer pair = diskPairWithFlatEnd(disk, end);
   if (pair.distance == 0.0) return certifiedOrBound(0.0, 0.0, pair.q, pair.q, scale);
-  const double lower = certificateAlong(target, disk, 0.0, pair.p - pair.q);
-  return certifiedOrBound(lower, pair.distance, pair.q, pair.p, scale);
+  const Vec3 w = pair.p - pair.q;
+  return certifiedOrBoundAlong(leastAlong(target, w) - disk.support(w), w.norm(), pair.distance,
+                               pair.q, pair.p, scale);
 }
 
 /// `disk` wholly beyond the plane of `end` (on the side away from the shape),
