@@ -159,6 +159,24 @@ struct LeafToDisk {
   Vec3 p_disk{Vec3::Zero()}, p_leaf{Vec3::Zero()};  ///< exact only
 };
 
+/// The exact leaf of a pair p_disk, p_leaf `upper` apart, certified to `lower`.
+inline LeafToDisk exactLeaf(double upper, double lower, const Vec3& p_disk, const Vec3& p_leaf) {
+  LeafToDisk answer;
+  answer.exact = true;
+  answer.distance = upper;
+  answer.certified = std::min(lower, upper);
+  answer.p_disk = p_disk;
+  answer.p_leaf = p_leaf;
+  return answer;
+}
+
+/// A leaf not settled, bounded below by `lower` (0 for a negative bound or NaN).
+inline LeafToDisk boundedLeaf(double lower) {
+  LeafToDisk answer;
+  answer.distance = lower > 0.0 ? lower : 0.0;
+  return answer;
+}
+
 /// A leaf whose best upper bound (the pair p_disk, p_leaf, `upper` apart) and
 /// best lower bound are known: exact when they meet within kShapeGapTolerance
 /// of the scene (the solver's own stopping test) plus `mismatch` (a Target's
@@ -166,17 +184,10 @@ struct LeafToDisk {
 /// closer), else the lower bound (0 for NaN).
 inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_disk,
                                    const Vec3& p_leaf, double scale, double mismatch = 0.0) {
-  LeafToDisk answer;
   if (upper - lower <= kShapeGapTolerance * scale + mismatch) {
-    answer.exact = true;
-    answer.distance = upper;
-    answer.certified = std::min(lower, upper);
-    answer.p_disk = p_disk;
-    answer.p_leaf = p_leaf;
-    return answer;
+    return exactLeaf(upper, lower, p_disk, p_leaf);
   }
-  answer.distance = lower > 0.0 ? lower : 0.0;
-  return answer;
+  return boundedLeaf(lower);
 }
 
 /// certifiedOrBound with the lower bound given as numerator / length: a
@@ -187,21 +198,14 @@ inline LeafToDisk certifiedOrBound(double lower, double upper, const Vec3& p_dis
 inline LeafToDisk certifiedOrBoundAlong(double numerator, double length, double upper,
                                         const Vec3& p_disk, const Vec3& p_leaf, double scale,
                                         double mismatch = 0.0) {
-  LeafToDisk answer;
   const bool positive = length > 0.0;
   const double lower =
       positive ? numerator / length : -std::numeric_limits<double>::infinity();
   if (positive &&
       upper * length - numerator <= (kShapeGapTolerance * scale + mismatch) * length) {
-    answer.exact = true;
-    answer.distance = upper;
-    answer.certified = std::min(lower, upper);
-    answer.p_disk = p_disk;
-    answer.p_leaf = p_leaf;
-    return answer;
+    return exactLeaf(upper, lower, p_disk, p_leaf);
   }
-  answer.distance = lower > 0.0 ? lower : 0.0;
-  return answer;
+  return boundedLeaf(lower);
 }
 
 /// A solver's answer (nearest points, distance, certificate) as an exact leaf.
