@@ -259,9 +259,14 @@ struct ConeTraits {
       tried->apex = true;
       return apexAgainstDisk(cone_target, disk, scale);
     };
+    const double normal_tilt = Vec2(disk.u.z(), disk.v.z()).norm();  // |P_disk z|
+    // A disk wholly beyond the base's plane needs only the disk-base pair's own
+    // certificate (diskBeyondFlatEnd).
     const auto against_base = [&] {
       tried->base = true;
-      return diskAgainstFlatEnd(disk, cone_target, cone_target.flatEnds()[0], scale);
+      const FlatEnd base = cone_target.flatEnds()[0];
+      return c.z() + disk.r * normal_tilt < -h ? diskBeyondFlatEnd(disk, base, scale)
+                                                : diskAgainstFlatEnd(disk, cone_target, base, scale);
     };
     // The side, else the end its least point lies past.
     const auto against_side = [&] {
@@ -276,14 +281,7 @@ struct ConeTraits {
       const LeafToDisk apex = against_apex();
       return apex.exact ? apex : against_side();
     }
-    const double normal_tilt = Vec2(disk.u.z(), disk.v.z()).norm();  // |P_disk z|
-    if (c.z() < -h) {
-      if (c.z() + disk.r * normal_tilt < -h) {  // wholly beyond the base's plane
-        tried->base = true;
-        return diskBeyondFlatEnd(disk, cone_target.flatEnds()[0], scale);
-      }
-      return against_base();
-    }
+    if (c.z() < -h) return against_base();
     const double centre_rho = std::sqrt(c.x() * c.x() + c.y() * c.y());
     const bool nearest_base_rim = (centre_rho - radius) * radius >= 2.0 * h * (c.z() + h);
     if (centre_rho > radius && nearest_base_rim && c.z() - disk.r * normal_tilt < -h) {

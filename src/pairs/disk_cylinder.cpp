@@ -158,7 +158,7 @@ struct CylinderTraits {
     };
     const double centre_side = disk.c.z() < 0.0 ? -1.0 : 1.0;
     double cap_first = 0.0;  // the side of the cap tried first, 0 for the wall
-    bool cap_tried = false;
+    bool beyond_cap = false;  // the disk lies wholly beyond that cap's plane
     for (const double side : {centre_side, -centre_side}) {
       const CapPlaneChord chord = capPlaneChord(disk, side, h);
       if (chord.crosses) {
@@ -169,16 +169,15 @@ struct CylinderTraits {
         }
         if (chord.least_at_chord) cap_first = side;
       } else if (side * disk.c.z() > h) {
-        // Wholly beyond this cap's plane.
-        const LeafToDisk cap = diskBeyondFlatEnd(disk, FlatEnd{side * h, radius}, scale);
-        if (cap.exact) return cap;
         cap_first = side;
-        cap_tried = true;
+        beyond_cap = true;
       }
       if (cap_first != 0.0) break;
     }
-    if (cap_first != 0.0 && !cap_tried) {
-      const LeafToDisk cap = against_cap(cap_first);
+    if (cap_first != 0.0) {
+      const LeafToDisk cap = beyond_cap
+                                 ? diskBeyondFlatEnd(disk, FlatEnd{cap_first * h, radius}, scale)
+                                 : against_cap(cap_first);
       if (cap.exact) return cap;
     }
     const DiskShapeSolution wall = solveDiskCapsule(disk, radius, h);
