@@ -113,24 +113,37 @@ struct DiskInShape {
   double support(const Vec3& w) const { return w.dot(c) + r * inPlane(w).norm(); }
   /// The disk point least along w: c - r P w / |P w| (P w = (u.w) u + (v.w) v),
   /// the centre when w is normal to the disk (every point ties).
-  Vec3 lowestAlong(const Vec3& w) const {
-    const Vec2 planar = inPlane(w);
-    const double length = planar.norm();
-    return length > 0.0 ? point(-(r / length) * planar) : c;
-  }
+  Vec3 lowestAlong(const Vec3& w) const { return lowestAlongPlanar(inPlane(w)); }
   /// lowestAlong(side * e_j), reading u.e_j, v.e_j off the axes (the faces of
   /// an axis-aligned box).
   Vec3 lowestAlongAxis(int j, double side) const {
-    const Vec2 planar(side * u[j], side * v[j]);
-    const double length = planar.norm();
-    return length > 0.0 ? point(-(r / length) * planar) : c;
+    return lowestAlongPlanar(Vec2(side * u[j], side * v[j]));
   }
   /// The disk point nearest y: y's foot on the disk's plane, clamped to the rim.
   Vec2 nearest(const Vec3& y) const { return clampedToRim(inPlane(y - c)); }
   /// The in-plane point s, clamped to the rim.
   Vec2 clampedToRim(const Vec2& s) const {
-    const double length = s.norm();
-    return length > r ? Vec2(s.x() * (r / length), s.y() * (r / length)) : s;
+    const double length_squared = s.squaredNorm();
+    if (!(length_squared > r * r)) return s;
+    const double to_rim = lengthOverNorm(r, length_squared);
+    return Vec2(s.x() * to_rim, s.y() * to_rim);
+  }
+  /// The disk point least along a direction whose in-plane coordinates are
+  /// `planar`: c - r planar / |planar|, or c for planar = 0.
+  Vec3 lowestAlongPlanar(const Vec2& planar) const {
+    const double length_squared = planar.squaredNorm();
+    if (!(length_squared > 0.0)) return c;
+    const double to_rim = lengthOverNorm(r, length_squared);
+    return point(Vec2(-to_rim * planar.x(), -to_rim * planar.y()));
+  }
+  /// length / |s| from |s|^2 > 0, as sqrt(|s|^2) * (length / |s|^2) where that
+  /// is finite and |s|^2 normal: the square root and the division run side by
+  /// side, so the chains of the closed forms that clamp or turn a point to the
+  /// rim wait for one of them, not for both in turn. Else length / |s|.
+  static double lengthOverNorm(double length, double norm_squared) {
+    const double side_by_side = std::sqrt(norm_squared) * (length / norm_squared);
+    if (std::isnormal(norm_squared) && std::isfinite(side_by_side)) return side_by_side;
+    return length / std::sqrt(norm_squared);
   }
   /// Whether u, v are orthonormal to within kOrthonormalInDouble (|u.u - 1|,
   /// |v.v - 1|, |u.v|): so in double; poses in float (~1e-7) are not.

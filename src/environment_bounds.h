@@ -727,7 +727,9 @@ inline LeafToDisk alignedBoxToDiskByNearestFeature(const DiskInShape& disk, cons
     };
     if (outside_count == 3) {
       const Vec3 corner = o + side.cwiseProduct(h);
-      const Vec3 p_disk = disk.point(disk.nearest(corner));
+      // On the first pass p is already the disk point nearest q, and q is
+      // this corner when the centre lies beyond its three faces.
+      const Vec3 p_disk = pass == 0 && corner == q ? p : disk.point(disk.nearest(corner));
       return certified((corner - p_disk).norm(), p_disk, corner);
     }
     if (outside_count == 2) {
