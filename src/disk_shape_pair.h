@@ -47,19 +47,17 @@ DiskShapeDistanceResult<S> nanDiskShapeResult() {
 /// rotations are used as given (checkDiskPose with kAsGivenRotationTolerance:
 /// in double, within kOrthonormalInDouble; in float never), so that the disk's
 /// axes in the shape's frame are orthonormal to double rounding: one pass over
-/// each pose.
+/// both poses (checkTwoPoses).
 struct DiskAndShapePoseCheck {
   bool valid;
   bool orthonormal;
 };
 
 template <typename S>
-DiskAndShapePoseCheck checkDiskAndShapePose(S radius, const fcl::Transform3<S>& X_WD,
-                                            const fcl::Transform3<S>& X_WS) {
-  const DiskPoseCheck disk = checkDiskPose(X_WD, kAsGivenRotationTolerance<S>);
-  const DiskPoseCheck shape = checkDiskPose(X_WS, kAsGivenRotationTolerance<S>);
-  return {isValidDiskRadius(radius) && disk.valid && shape.valid,
-          disk.orthonormal && shape.orthonormal};
+[[gnu::always_inline]] inline DiskAndShapePoseCheck checkDiskAndShapePose(
+    S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
+  const TwoPoseCheck poses = checkTwoPoses(X_WD, X_WS, kAsGivenRotationTolerance<S>);
+  return {isValidDiskRadius(radius) && poses.valid, poses.orthonormal_a && poses.orthonormal_b};
 }
 
 /// The disk's pose and radius, and the shape's pose, describe a pair (the shape's

@@ -84,7 +84,8 @@ Mat3 diskRotationInDouble(const Eigen::Transform<S, 3, Eigen::Isometry>& X_WD) {
 /// Whether (r1, X_W1, r2, X_W2) describes two disks (radii accepted by
 /// isValidDiskRadius(), poses by isValidDiskPose(); the solvers answer anything
 /// else with nanDistanceResult()), and whether each rotation is used as given
-/// (checkDiskPose with kAsGivenRotationTolerance): one pass over each pose.
+/// (checkDiskPose with kAsGivenRotationTolerance): one pass over both poses
+/// (checkTwoPoses).
 struct DiskPairCheck {
   bool valid;
   bool orthonormal1, orthonormal2;
@@ -93,10 +94,9 @@ struct DiskPairCheck {
 template <typename S>
 DiskPairCheck checkDiskPair(S r1, const fcl::Transform3<S>& X_W1, S r2,
                             const fcl::Transform3<S>& X_W2) {
-  const DiskPoseCheck check1 = checkDiskPose(X_W1, kAsGivenRotationTolerance<S>);
-  const DiskPoseCheck check2 = checkDiskPose(X_W2, kAsGivenRotationTolerance<S>);
-  return {isValidDiskRadius(r1) && isValidDiskRadius(r2) && check1.valid && check2.valid,
-          check1.orthonormal, check2.orthonormal};
+  const TwoPoseCheck poses = checkTwoPoses(X_W1, X_W2, kAsGivenRotationTolerance<S>);
+  return {isValidDiskRadius(r1) && isValidDiskRadius(r2) && poses.valid, poses.orthonormal_a,
+          poses.orthonormal_b};
 }
 
 struct PairInFrame1 {

@@ -394,18 +394,22 @@ TYPED_TEST(Robustness, RotationWithinToleranceIsTheDiskOfItsNormal) {
   }
 }
 
-// checkDiskPose's two-lane form (double, SSE2) and the entry-by-entry rule give
-// the same verdicts: on rotations perturbed entry by entry around both
-// tolerances (defects from 1e-17 to 1e-4, either sign), on every non-finite
-// entry and on translations around kMaxDiskLength.
+// checkDiskPose's two-lane form (double, SSE2), checkTwoPoses (both poses of a
+// query in one pass) and the entry-by-entry rule give the same verdicts: on
+// rotations perturbed entry by entry around both tolerances (defects from
+// 1e-17 to 1e-4, either sign), on every non-finite entry and on translations
+// around kMaxDiskLength; checkTwoPoses on each such pose paired with the one
+// before, in both orders.
 TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
   using fcl_disk::internal::checkDiskPose;
   using fcl_disk::internal::checkDiskPoseOneByOne;
+  using fcl_disk::internal::checkTwoPoses;
   fcl_disk_test::Random random(20241128);
   // The solvers ask for 1e-13 (their as-given tolerance in double) and -1
   // (never, in float); 1e-9 is one more threshold inside the draws' range.
   const double tolerances[] = {1e-13, 1e-9, -1.0};
-  int valid = 0, invalid = 0, orthonormal = 0;
+  int valid = 0, invalid = 0, orthonormal = 0, pairs_valid = 0, pairs_invalid = 0;
+  fcl::Transform3d previous = fcl::Transform3d::Identity();
   const auto expect_same = [&](const fcl::Transform3d& X) {
     for (const double tolerance : tolerances) {
       const auto two_lanes = checkDiskPose(X, tolerance);
@@ -416,7 +420,20 @@ TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
         orthonormal += rule.orthonormal;
       }
       (rule.valid ? valid : invalid) += 1;
+      const auto rule_previous = checkDiskPoseOneByOne(previous, tolerance);
+      const bool both_valid = rule.valid && rule_previous.valid;
+      for (const bool x_first : {true, false}) {
+        const auto both = x_first ? checkTwoPoses(X, previous, tolerance)
+                                  : checkTwoPoses(previous, X, tolerance);
+        ASSERT_EQ(both.valid, both_valid) << X.matrix() << "\n" << previous.matrix();
+        if (both_valid) {
+          ASSERT_EQ(x_first ? both.orthonormal_a : both.orthonormal_b, rule.orthonormal);
+          ASSERT_EQ(x_first ? both.orthonormal_b : both.orthonormal_a, rule_previous.orthonormal);
+        }
+      }
+      (both_valid ? pairs_valid : pairs_invalid) += 1;
     }
+    previous = X;
   };
   for (int i = 0; i < 20000; ++i) {
     fcl::Transform3d X = fcl::Transform3d::Identity();
@@ -445,6 +462,8 @@ TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
   EXPECT_GT(valid, 1000);
   EXPECT_GT(invalid, 1000);
   EXPECT_GT(orthonormal, 1000);
+  EXPECT_GT(pairs_valid, 1000);
+  EXPECT_GT(pairs_invalid, 1000);
 }
 
 // A reflection (det = -1) maps the local disk onto the same set as the rotation

@@ -178,6 +178,76 @@ inline DiskPoseCheck checkDiskPose(const fcl::Transform3<S>& X_WD, S orthonormal
   return checkDiskPoseOneByOne(X_WD, orthonormal_tolerance);
 }
 
+/// checkDiskPose of two poses at once: both valid, and each one's orthonormal
+/// verdict (which matters only when both are valid).
+struct TwoPoseCheck {
+  bool valid;  ///< both poses pass isValidDiskPose's rule.
+  bool orthonormal_a, orthonormal_b;
+};
+
+#if defined(__SSE2__)
+/// checkTwoPoses in double with SSE2: the lanes hold the two poses, each lane
+/// computing the rule of checkDiskPoseOneByOne for its pose with the same
+/// products summed in the same order (the same defects to the bit, so the same
+/// verdicts: test_robustness compares the two). A query checks both of its
+/// poses, and one pass over both takes about half the instructions of two
+/// passes over one (bench/disk_shape_calls under callgrind).
+/// a, b: the 4x4 matrices, column-major (M(k, i) = m[4 i + k]).
+[[gnu::always_inline]] inline TwoPoseCheck checkTwoPosesTwoLanes(const double* a, const double* b,
+                                                                 double orthonormal_tolerance) {
+  const auto both = [a, b](int k) { return _mm_loadh_pd(_mm_load_sd(a + k), b + k); };
+  const __m128d m00 = both(0), m10 = both(1), m20 = both(2);
+  const __m128d m01 = both(4), m11 = both(5), m21 = both(6);
+  const __m128d m02 = both(8), m12 = both(9), m22 = both(10);
+  // Column i . column j, summed row 0, 1, 2 as the rule sums it.
+  const auto dot = [](__m128d x0, __m128d x1, __m128d x2, __m128d y0, __m128d y1, __m128d y2) {
+    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(x0, y0), _mm_mul_pd(x1, y1)), _mm_mul_pd(x2, y2));
+  };
+  const __m128d one = _mm_set1_pd(1.0);
+  const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
+  const auto defect = [&magnitude](__m128d entry) { return _mm_and_pd(entry, magnitude); };
+  const __m128d d00 = defect(_mm_sub_pd(dot(m00, m10, m20, m00, m10, m20), one));
+  const __m128d d11 = defect(_mm_sub_pd(dot(m01, m11, m21, m01, m11, m21), one));
+  const __m128d d22 = defect(_mm_sub_pd(dot(m02, m12, m22, m02, m12, m22), one));
+  const __m128d d01 = defect(dot(m00, m10, m20, m01, m11, m21));
+  const __m128d d02 = defect(dot(m00, m10, m20, m02, m12, m22));
+  const __m128d d12 = defect(dot(m01, m11, m21, m02, m12, m22));
+  // Valid: every defect within kRotationDefectTolerance and every translation
+  // coordinate within kMaxDiskLength (<= fails on NaN).
+  const __m128d rotation_bound = _mm_set1_pd(kRotationDefectTolerance<double>);
+  const __m128d length = _mm_set1_pd(kMaxDiskLength<double>);
+  const auto within = [](__m128d x, __m128d bound) { return _mm_cmple_pd(x, bound); };
+  __m128d valid = _mm_and_pd(within(d00, rotation_bound), within(d11, rotation_bound));
+  valid = _mm_and_pd(valid, _mm_and_pd(within(d22, rotation_bound), within(d01, rotation_bound)));
+  valid = _mm_and_pd(valid, _mm_and_pd(within(d02, rotation_bound), within(d12, rotation_bound)));
+  for (int k = 12; k < 15; ++k) valid = _mm_and_pd(valid, within(defect(both(k)), length));
+  // Orthonormal: the largest defect within the tolerance (the maxima are
+  // NaN-free where the pose is valid, the only case where they are read).
+  const __m128d largest = _mm_max_pd(_mm_max_pd(_mm_max_pd(d00, d11), _mm_max_pd(d22, d01)),
+                                     _mm_max_pd(d02, d12));
+  const int orthonormal = _mm_movemask_pd(within(largest, _mm_set1_pd(orthonormal_tolerance)));
+  return {_mm_movemask_pd(valid) == 3, (orthonormal & 1) != 0, (orthonormal & 2) != 0};
+}
+#endif
+
+/// checkDiskPose of X_A and X_B, in one pass where SSE2 allows (double).
+template <typename S>
+[[gnu::always_inline]] inline TwoPoseCheck checkTwoPoses(const fcl::Transform3<S>& X_A,
+                                                         const fcl::Transform3<S>& X_B,
+                                                         S orthonormal_tolerance) {
+#if defined(__SSE2__)
+  if constexpr (std::is_same_v<S, double>) {
+    using Matrix = std::decay_t<decltype(X_A.matrix())>;
+    static_assert(Matrix::RowsAtCompileTime == 4 && !Matrix::IsRowMajor,
+                  "checkTwoPosesTwoLanes reads column-major 4x4 matrices");
+    return checkTwoPosesTwoLanes(X_A.matrix().data(), X_B.matrix().data(), orthonormal_tolerance);
+  }
+#endif
+  const DiskPoseCheck a = checkDiskPoseOneByOne(X_A, orthonormal_tolerance);
+  const DiskPoseCheck b = checkDiskPoseOneByOne(X_B, orthonormal_tolerance);
+  return {a.valid && b.valid, a.orthonormal, b.orthonormal};
+}
+
 }  // namespace internal
 /// @endcond
 
