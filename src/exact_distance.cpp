@@ -543,13 +543,14 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
 }
 
 /// rimRim's `converging` test for a rim step of dtheta >= 0 radians with
-/// curvature kappa (psi'' = r1 kappa) at a point `distance` from disk 2: the
+/// curvature kappa (psi'' = r1 kappa) at a point where psi = d^2 / 2: the
 /// step moves the point by at most kCertifyStep * scale, and the decrease of
 /// psi it predicts, r1 kappa dtheta^2 / 2, is within what the gap tolerance
-/// allows at that distance (d psi = d dd).
-bool rimStepConverging(double r1, double dtheta, double kappa, double distance, double scale) {
+/// allows at that distance (d psi = d dd). d's square root is taken only for
+/// a step that passes the first test.
+bool rimStepConverging(double r1, double dtheta, double kappa, double psi, double scale) {
   return dtheta * r1 <= kCertifyStep * scale &&
-         0.5 * r1 * kappa * dtheta * dtheta <= distance * (kGapTolerance * scale);
+         0.5 * r1 * kappa * dtheta * dtheta <= std::sqrt(2.0 * psi) * (kGapTolerance * scale);
 }
 
 /// Plain Newton along disk 1's rim, the path nearly every rim-rim query
@@ -602,8 +603,8 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   double to_rim = over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
   double psi = 0.5 * ((1.0 - to_rim) * (1.0 - to_rim) * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
-  const auto converging = [&](double dtheta, double kappa, double distance) {
-    return rimStepConverging(r1, dtheta, kappa, distance, scale);
+  const auto converging = [&](double dtheta, double kappa, double psi_at) {
+    return rimStepConverging(r1, dtheta, kappa, psi_at, scale);
   };
   // The certificate at the current point, once tried, and the distance |q - x|
   // it is compared with (the points themselves, not psi: for a rotation that
@@ -637,7 +638,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     lower.reset();
     if (step_before > 0.0) {
       const double ratio = last_step / step_before;
-      if (converging(last_step * ratio * ratio, last_kappa, std::sqrt(2.0 * psi))) {
+      if (converging(last_step * ratio * ratio, last_kappa, psi)) {
         if (certified()) return answer(step);
       }
     }
@@ -669,11 +670,11 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     // flat along the rim) is clamped to it, as rimRim clamps it.
     const bool clamped = !(std::abs(sigma) <= kMaxRimStep * kappa);
     const double dtheta = clamped ? kMaxRimStep : std::abs(sigma) / kappa;
-    const double distance = std::sqrt(2.0 * psi);
     // Converged along the rim with the gradient pointing inwards: a spurious
     // rim minimum, which rimRim's model step leaves.
-    if (outward < 0.0 && converging(dtheta, kappa, distance)) break;
-    if (converging(dtheta, kappa, distance)) {
+    if (outward < 0.0 && converging(dtheta, kappa, psi)) break;
+    if (converging(dtheta, kappa, psi)) {
+      const double distance = std::sqrt(2.0 * psi);
       if (!lower && certified()) return answer(step);
       // Along q - x the gap is open by no more than the rounding of that
       // direction explains (small distances): the points are proven when the
@@ -1017,7 +1018,7 @@ CornerAnswer rimRimFromCorner(const PairInFrame1& pair, Vec2 radial, PointToDisk
     if (!(kappa > 0.0)) break;
     const double dtheta = std::clamp(-sigma / kappa, -kMaxRimStep, kMaxRimStep);
     if (!tried_unmoved &&
-        rimStepConverging(pair.r1, std::abs(dtheta), kappa, std::sqrt(2.0 * at.psi), scale)) {
+        rimStepConverging(pair.r1, std::abs(dtheta), kappa, at.psi, scale)) {
       const CornerAnswer here = certifiedCorner(pair, radial, at, scale, face_lower_bound);
       if (here.proven) return here;
       tried_unmoved = true;
