@@ -92,13 +92,10 @@ constexpr double kBracketGrowth = 4.0;
 
 /// A lens corner (the crossing for parallel planes, off by O(s^2 r2)
 /// otherwise) starts the candidate's Newton iteration, which takes at most
-/// kMaxCornerIterations steps. It is not refined first (one Newton step on
-/// rho(theta) - r2 towards the exact crossing): of the 11,987 corner attempts
-/// among the first 16,000 pairs of the near_parallel, side_by_side,
-/// separation_scale and random families in both orders (seed 20240601), 19 end
-/// unproven without it and 8 with it, and it costs the near_parallel/rims_crossing
-/// pairs 1.16x their time (median 199 ns against 171, 4,000 pairs, each timed
-/// over 100 repeats).
+/// kMaxCornerIterations steps. It is not refined first (a Newton step on
+/// rho(theta) - r2 towards the exact crossing): that proves a few more corners
+/// but costs every corner attempt a step, more than the fallbacks it spares
+/// (docs/exact_distance.md, section 4).
 constexpr int kMaxCornerIterations = 8;
 
 /// The direction of q - x is known to about 2 eps scale / d (both points carry
