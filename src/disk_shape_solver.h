@@ -40,10 +40,6 @@
 #include <type_traits>
 #include <utility>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 #include "fcl_disk/disk_shape_distance.h"
 #include "pair_in_frame1.h"
 
@@ -199,44 +195,23 @@ struct DiskInShape {
 /// The disk of radius r and pose X_WD in the frame S of a shape with pose X_WS
 /// (double; the offset c_D - c_S is formed first, so a common translation costs
 /// only its rounding).
-#if defined(__SSE2__)
-/// diskInShape in double with SSE2, from the poses' column-major 4x4 matrices
-/// (M(k, i) = m[4 i + k]): R_WS^T x as x_0 (row 0 of R_WS) + x_1 (row 1) +
-/// x_2 (row 2), the x and y coordinates in the two lanes, z apart; the same
-/// sums as R_WS.transpose() * x, in fewer instructions (Eigen forms each
-/// coordinate as a dot product with a sum across lanes). Every generic
-/// disk-shape query starts here.
-[[gnu::always_inline]] inline DiskInShape diskInShapeTwoLanes(double radius, const double* disk,
-                                                              const double* shape) {
-  const auto row = [shape](int k) { return _mm_loadh_pd(_mm_load_sd(shape + k), shape + 4 + k); };
-  const __m128d row0 = row(0), row1 = row(1), row2 = row(2);
-  const auto toShape = [&](double x0, double x1, double x2) {
-    const __m128d xy = _mm_add_pd(
-        _mm_add_pd(_mm_mul_pd(row0, _mm_set1_pd(x0)), _mm_mul_pd(row1, _mm_set1_pd(x1))),
-        _mm_mul_pd(row2, _mm_set1_pd(x2)));
-    Vec3 out;
-    _mm_storeu_pd(out.data(), xy);
-    out.z() = (shape[8] * x0 + shape[9] * x1) + shape[10] * x2;
-    return out;
-  };
-  const Vec3 u = toShape(disk[0], disk[1], disk[2]), v = toShape(disk[4], disk[5], disk[6]);
-  return DiskInShape{
-      toShape(disk[12] - shape[12], disk[13] - shape[13], disk[14] - shape[14]), u, v,
-      u.cross(v), radius};
-}
-#endif
-
 template <typename S>
 [[gnu::always_inline]] inline DiskInShape diskInShape(S radius, const fcl::Transform3<S>& X_WD,
                                                       const fcl::Transform3<S>& X_WS) {
-#if defined(__SSE2__)
   if constexpr (std::is_same_v<S, double>) {
+    // R_WS^T in one TransposedProduct for the centre and both axes, read
+    // straight from the poses' column-major 4x4 matrices.
     using Matrix = std::decay_t<decltype(X_WD.matrix())>;
     static_assert(Matrix::RowsAtCompileTime == 4 && !Matrix::IsRowMajor,
-                  "diskInShapeTwoLanes reads column-major 4x4 matrices");
-    return diskInShapeTwoLanes(radius, X_WD.matrix().data(), X_WS.matrix().data());
+                  "diskInShape reads column-major 4x4 matrices");
+    const double* disk = X_WD.matrix().data();
+    const double* shape = X_WS.matrix().data();
+    const TransposedProduct<4> to_shape(shape);
+    const Vec3 u = to_shape(disk[0], disk[1], disk[2]), v = to_shape(disk[4], disk[5], disk[6]);
+    return DiskInShape{
+        to_shape(disk[12] - shape[12], disk[13] - shape[13], disk[14] - shape[14]), u, v,
+        u.cross(v), radius};
   }
-#endif
   const Mat3 R_WS = X_WS.linear().template cast<double>();
   const Mat3 R_WD = X_WD.linear().template cast<double>();
   const Vec3 offset =
