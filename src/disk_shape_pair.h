@@ -76,11 +76,15 @@ template <typename S>
 /// in diskAtShapeOrigin's.
 template <typename S, typename ToWorld>
 DiskShapeDistanceResult<S> resultInWorld(const DiskShapeSolution& solution, ToWorld to_world) {
+  // The points first: the result's default values are then overwritten with
+  // no read of the poses in between, so the compiler drops them.
+  const fcl::Vector3<S> p_W_disk = to_world(solution.p).template cast<S>();
+  const fcl::Vector3<S> p_W_shape = to_world(solution.q).template cast<S>();
   DiskShapeDistanceResult<S> result;
   result.distance = S(solution.distance);
   result.lower_bound = S(std::min(solution.lower_bound, solution.distance));
-  result.p_W_disk = to_world(solution.p).template cast<S>();
-  result.p_W_shape = to_world(solution.q).template cast<S>();
+  result.p_W_disk = p_W_disk;
+  result.p_W_shape = p_W_shape;
   result.iterations = solution.iterations;
   return result;
 }
