@@ -188,8 +188,7 @@ struct PairInFrame1 {
   /// instructions more, 1.06x the time).
   [[gnu::always_inline]] static PairInFrame1 make(const Vec3& c, const Mat3& R, double r1,
                                                   double r2) {
-    PairInFrame1 pair{c, R, r1, r2, Vec2(R(2, 0), R(2, 1)), 0.0,
-                      -(R.transpose() * c)};
+    PairInFrame1 pair{c, R, r1, r2, Vec2(R(2, 0), R(2, 1)), 0.0, -(R.transpose() * c)};
     pair.s = std::sqrt(pair.m.squaredNorm());
     return pair;
   }

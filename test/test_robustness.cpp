@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "pair_in_frame1.h"  // src/: TransposedProduct
 #include "test_random.h"
 
 namespace {
@@ -464,6 +465,29 @@ TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
   EXPECT_GT(orthonormal, 1000);
   EXPECT_GT(pairs_valid, 1000);
   EXPECT_GT(pairs_invalid, 1000);
+}
+
+// TransposedProduct (the frame change of every double query) gives Eigen's
+// R.transpose() * x bit for bit, from a Mat3 (stride 3) and from a pose's 4x4
+// matrix (stride 4), on perturbed rotations and vectors of every magnitude.
+TEST(RobustnessPoseCheck, TransposedProductMatchesEigen) {
+  fcl_disk_test::Random random(20261130);
+  for (int i = 0; i < 20000; ++i) {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() = random.rotation();
+    X.matrix()(int(random.uniform01() * 3), int(random.uniform01() * 3)) +=
+        random.logUniform(1e-17, 1e-4);
+    const Eigen::Matrix3d R = X.linear();
+    const Eigen::Vector3d x = random.inBall(random.logUniform(1e-90, 1e90));
+    const Eigen::Vector3d expected = R.transpose() * x;
+    const Eigen::Vector3d from_mat3 = fcl_disk::internal::TransposedProduct<3>(R.data())(x);
+    const Eigen::Vector3d from_pose =
+        fcl_disk::internal::TransposedProduct<4>(X.matrix().data())(x);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(from_mat3[k], expected[k]) << R << "\n" << x.transpose();
+      ASSERT_EQ(from_pose[k], expected[k]) << R << "\n" << x.transpose();
+    }
+  }
 }
 
 // A reflection (det = -1) maps the local disk onto the same set as the rotation
