@@ -63,13 +63,14 @@ template <typename S>
 /// The disk's pose and radius, and the shape's pose, describe a pair (the shape's
 /// own dimensions are the pair's to check). A shape pose obeys the disk pose rule:
 /// finite, within kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance.
-/// Inlined whole, for the closed forms that need no more (the sphere, the
-/// halfspace, the plane): only the verdicts they use are then computed.
+/// Both poses in one pass (checkTwoPoses). Inlined whole, for the closed forms
+/// that need no more (the sphere, the halfspace, the plane): only the verdict
+/// they use is then computed.
 template <typename S>
 [[gnu::always_inline]] inline bool isValidDiskAndShapePose(S radius,
                                                            const fcl::Transform3<S>& X_WD,
                                                            const fcl::Transform3<S>& X_WS) {
-  return isValidDiskRadius(radius) & isValidDiskPose(X_WD) & isValidDiskPose(X_WS);
+  return isValidDiskRadius(radius) && checkTwoPoses(X_WD, X_WS, S(0)).valid;
 }
 
 /// The result of a solution in the shape's frame, or (toWorldFromShapeOrigin)

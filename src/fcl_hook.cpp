@@ -511,7 +511,7 @@ constexpr bool kHasDiskEnvironment = DiskEnvironment<NodeType, S>::kAnswered;
 template <typename S>
 bool isDiskEnvironmentPair(const Disk<S>& disk, const Transform3<S>& X_WD,
                            const Transform3<S>& X_WE) {
-  return isValidDiskPose(X_WD) && isValidDiskRadius(disk.radius) && isValidDiskPose(X_WE);
+  return isValidDiskRadius(disk.radius) && internal::checkTwoPoses(X_WD, X_WE, S(0)).valid;
 }
 
 /// Distance between a Disk and a mesh or octree (node type EnvType), in FCL's
