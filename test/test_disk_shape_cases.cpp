@@ -1396,17 +1396,14 @@ TEST(DiskShapeCases, EdgePairsSettleInClosedForm) {
   constexpr int kPoses = 8000;
   constexpr double kMostInClosedForm = 0.999;
   for (const double k : {1e-80, 1.0, 1e80}) {
-    auto corners = std::make_shared<std::vector<Vector3d>>(std::vector<Vector3d>{
-        k * Vector3d(-0.3, -0.25, -0.2), k * Vector3d(0.3, -0.25, -0.2), k * Vector3d(0.3, 0.25, -0.2),
-        k * Vector3d(-0.3, 0.25, -0.2), k * Vector3d(-0.3, -0.25, 0.2), k * Vector3d(0.3, -0.25, 0.2),
-        k * Vector3d(0.3, 0.25, 0.2), k * Vector3d(-0.3, 0.25, 0.2)});
     const std::vector<std::pair<std::string, std::shared_ptr<fcl::ShapeBase<double>>>> shapes = {
         {"box", std::make_shared<fcl::Box<double>>(0.6 * k, 0.5 * k, 0.4 * k)},
         {"capsule", std::make_shared<fcl::Capsule<double>>(0.2 * k, 0.6 * k)},
         {"triangle", std::make_shared<fcl::TriangleP<double>>(k * Vector3d(0.4, -0.1, 0.1),
                                                                k * Vector3d(-0.3, 0.35, -0.05),
                                                                k * Vector3d(-0.1, -0.4, 0.2))},
-        {"convex", std::make_shared<fcl::Convex<double>>(corners, 6, boxFaceList())}};
+        {"convex",
+         std::make_shared<fcl::Convex<double>>(boxAsConvex<double>(0.6 * k, 0.5 * k, 0.4 * k))}};
     for (const auto& [name, shape] : shapes) {
       int separated = 0, in_closed_form = 0;
       for (int i = 0; i < kPoses; ++i) {
