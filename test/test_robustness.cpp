@@ -16,11 +16,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "pair_in_frame1.h"  // src/: TransposedProduct
@@ -396,23 +398,27 @@ TYPED_TEST(Robustness, RotationWithinToleranceIsTheDiskOfItsNormal) {
 }
 
 // checkDiskPose's two-lane form (double, SSE2), checkTwoPoses (both poses of a
-// query in one pass) and the entry-by-entry rule give the same verdicts: on
-// rotations perturbed entry by entry around both tolerances (defects from
-// 1e-17 to 1e-4, either sign), on every non-finite entry and on translations
-// around kMaxDiskLength; checkTwoPoses on each such pose paired with the one
-// before, in both orders.
-TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
+// query in one pass, double and float) and the entry-by-entry rule give the
+// same verdicts: on rotations perturbed entry by entry around both tolerances
+// (defects from 1e-17 (double) or 1e-9 (float) to 1e-4 or 1e-3, either sign),
+// on every non-finite entry and on translations around kMaxDiskLength;
+// checkTwoPoses on each such pose paired with the one before, in both orders.
+template <typename S>
+void expectTwoLaneFormsMatchTheRule(std::uint64_t seed) {
   using fcl_disk::internal::checkDiskPose;
   using fcl_disk::internal::checkDiskPoseOneByOne;
   using fcl_disk::internal::checkTwoPoses;
-  fcl_disk_test::Random random(20241128);
+  using Transform = fcl::Transform3<S>;
+  constexpr bool kDouble = std::is_same_v<S, double>;
+  fcl_disk_test::Random random(seed);
   // The solvers ask for 1e-13 (their as-given tolerance in double) and -1
-  // (never, in float); 1e-9 is one more threshold inside the draws' range.
-  const double tolerances[] = {1e-13, 1e-9, -1.0};
+  // (never, in float); one more threshold inside the draws' range.
+  const S tolerances[] = {kDouble ? S(1e-13) : S(1e-6), kDouble ? S(1e-9) : S(1e-5), S(-1)};
+  const double smallest_defect = kDouble ? 1e-17 : 1e-9, largest_defect = kDouble ? 1e-4 : 1e-3;
   int valid = 0, invalid = 0, orthonormal = 0, pairs_valid = 0, pairs_invalid = 0;
-  fcl::Transform3d previous = fcl::Transform3d::Identity();
-  const auto expect_same = [&](const fcl::Transform3d& X) {
-    for (const double tolerance : tolerances) {
+  Transform previous = Transform::Identity();
+  const auto expect_same = [&](const Transform& X) {
+    for (const S tolerance : tolerances) {
       const auto two_lanes = checkDiskPose(X, tolerance);
       const auto rule = checkDiskPoseOneByOne(X, tolerance);
       ASSERT_EQ(two_lanes.valid, rule.valid) << X.matrix();
@@ -437,24 +443,24 @@ TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
     previous = X;
   };
   for (int i = 0; i < 20000; ++i) {
-    fcl::Transform3d X = fcl::Transform3d::Identity();
-    X.linear() = random.rotation();
-    X.translation() = random.inBall(random.logUniform(1e-3, 1e3));
+    Transform X = Transform::Identity();
+    X.linear() = random.rotation().template cast<S>();
+    X.translation() = random.inBall(random.logUniform(1e-3, 1e3)).template cast<S>();
     const int entries = 1 + int(random.uniform01() * 3);
     for (int e = 0; e < entries; ++e) {
       const int row = int(random.uniform01() * 3), col = int(random.uniform01() * 3);
       const double sign = random.chance(0.5) ? 1.0 : -1.0;
-      X.matrix()(row, col) += sign * random.logUniform(1e-17, 1e-4);
+      X.matrix()(row, col) += S(sign * random.logUniform(smallest_defect, largest_defect));
     }
     expect_same(X);
   }
-  const fcl::Transform3d X = tiltedPose<double>({0.3, -0.2, 0.1}, {1, 2, 3});
-  for (const auto& variant : nonFiniteVariants<double>(X)) expect_same(variant.second);
-  const double length = fcl_disk::kMaxDiskLength<double>;
+  const Transform X = tiltedPose<S>({0.3, -0.2, 0.1}, {1, 2, 3});
+  for (const auto& variant : nonFiniteVariants<S>(X)) expect_same(variant.second);
+  const S length = fcl_disk::kMaxDiskLength<S>;
   for (int coordinate = 0; coordinate < 3; ++coordinate) {
-    for (const double value : {length, std::nextafter(length, 2 * length), -length,
-                               -std::nextafter(length, 2 * length)}) {
-      fcl::Transform3d moved = X;
+    for (const S value : {length, std::nextafter(length, 2 * length), -length,
+                          -std::nextafter(length, 2 * length)}) {
+      Transform moved = X;
       moved.translation()(coordinate) = value;
       expect_same(moved);
     }
@@ -465,6 +471,14 @@ TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
   EXPECT_GT(orthonormal, 1000);
   EXPECT_GT(pairs_valid, 1000);
   EXPECT_GT(pairs_invalid, 1000);
+}
+
+TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRule) {
+  expectTwoLaneFormsMatchTheRule<double>(20241128);
+}
+
+TEST(RobustnessPoseCheck, TwoLaneFormMatchesTheRuleInFloat) {
+  expectTwoLaneFormsMatchTheRule<float>(20261130);
 }
 
 // TransposedProduct (the frame change of every double query) gives Eigen's

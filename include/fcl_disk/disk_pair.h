@@ -186,58 +186,98 @@ struct TwoPoseCheck {
 };
 
 #if defined(__SSE2__)
-/// checkTwoPoses in double with SSE2: the lanes hold the two poses, each lane
-/// computing the rule of checkDiskPoseOneByOne for its pose with the same
-/// products summed in the same order (the same defects to the bit, so the same
-/// verdicts: test_robustness compares the two). A query checks both of its
-/// poses, and one pass over both takes fewer instructions than a pass over
-/// each (a disk-box query 1075 -> 1024 instructions: bench/disk_shape_calls box
-/// double 5 under callgrind).
+/// SSE2's vectors as checkTwoPosesTwoLanes uses them: lane 0 holds an entry of
+/// one pose, lane 1 the same entry of the other (a float vector's lanes 2 and
+/// 3 hold 0, which passes every test and is never read).
+template <typename S>
+struct PoseLanes;
+template <>
+struct PoseLanes<double> {
+  using V = __m128d;
+  static V both(const double* a, const double* b) { return _mm_loadh_pd(_mm_load_sd(a), b); }
+  static V splat(double x) { return _mm_set1_pd(x); }
+  static V mul(V x, V y) { return _mm_mul_pd(x, y); }
+  static V add(V x, V y) { return _mm_add_pd(x, y); }
+  static V sub(V x, V y) { return _mm_sub_pd(x, y); }
+  static V max(V x, V y) { return _mm_max_pd(x, y); }
+  static V both_and(V x, V y) { return _mm_and_pd(x, y); }
+  static V magnitude(V x) {
+    return _mm_and_pd(x, _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL)));
+  }
+  static V within(V x, V bound) { return _mm_cmple_pd(x, bound); }  // false on NaN
+  static int lanes(V mask) { return _mm_movemask_pd(mask); }       // bit i: lane i
+};
+template <>
+struct PoseLanes<float> {
+  using V = __m128;
+  static V both(const float* a, const float* b) {
+    return _mm_unpacklo_ps(_mm_load_ss(a), _mm_load_ss(b));
+  }
+  static V splat(float x) { return _mm_set1_ps(x); }
+  static V mul(V x, V y) { return _mm_mul_ps(x, y); }
+  static V add(V x, V y) { return _mm_add_ps(x, y); }
+  static V sub(V x, V y) { return _mm_sub_ps(x, y); }
+  static V max(V x, V y) { return _mm_max_ps(x, y); }
+  static V both_and(V x, V y) { return _mm_and_ps(x, y); }
+  static V magnitude(V x) { return _mm_and_ps(x, _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff))); }
+  static V within(V x, V bound) { return _mm_cmple_ps(x, bound); }
+  static int lanes(V mask) { return _mm_movemask_ps(mask) & 3; }
+};
+
+/// checkTwoPoses with SSE2 (double or float): the lanes hold the two poses,
+/// each lane computing the rule of checkDiskPoseOneByOne for its pose in S,
+/// with the same products summed in the same order (the same defects to the
+/// bit, so the same verdicts: test_robustness compares the two). A query
+/// checks both of its poses, and one pass over both takes fewer instructions
+/// than a pass over each (a disk-box query 1075 -> 1024 instructions in
+/// double, 1327 -> 1239 in float: bench/disk_shape_calls box double|float 5
+/// under callgrind).
 /// a, b: the 4x4 matrices, column-major (M(k, i) = m[4 i + k]).
-[[gnu::always_inline]] inline TwoPoseCheck checkTwoPosesTwoLanes(const double* a, const double* b,
-                                                                 double orthonormal_tolerance) {
-  const auto both = [a, b](int k) { return _mm_loadh_pd(_mm_load_sd(a + k), b + k); };
-  const __m128d m00 = both(0), m10 = both(1), m20 = both(2);
-  const __m128d m01 = both(4), m11 = both(5), m21 = both(6);
-  const __m128d m02 = both(8), m12 = both(9), m22 = both(10);
+template <typename S>
+[[gnu::always_inline]] inline TwoPoseCheck checkTwoPosesTwoLanes(const S* a, const S* b,
+                                                                 S orthonormal_tolerance) {
+  using L = PoseLanes<S>;
+  using V = typename L::V;
+  const auto both = [a, b](int k) { return L::both(a + k, b + k); };
+  const V m00 = both(0), m10 = both(1), m20 = both(2);
+  const V m01 = both(4), m11 = both(5), m21 = both(6);
+  const V m02 = both(8), m12 = both(9), m22 = both(10);
   // Column i . column j, summed row 0, 1, 2 as the rule sums it.
-  const auto dot = [](__m128d x0, __m128d x1, __m128d x2, __m128d y0, __m128d y1, __m128d y2) {
-    return _mm_add_pd(_mm_add_pd(_mm_mul_pd(x0, y0), _mm_mul_pd(x1, y1)), _mm_mul_pd(x2, y2));
+  const auto dot = [](V x0, V x1, V x2, V y0, V y1, V y2) {
+    return L::add(L::add(L::mul(x0, y0), L::mul(x1, y1)), L::mul(x2, y2));
   };
-  const __m128d one = _mm_set1_pd(1.0);
-  const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
-  const auto defect = [&magnitude](__m128d entry) { return _mm_and_pd(entry, magnitude); };
-  const __m128d d00 = defect(_mm_sub_pd(dot(m00, m10, m20, m00, m10, m20), one));
-  const __m128d d11 = defect(_mm_sub_pd(dot(m01, m11, m21, m01, m11, m21), one));
-  const __m128d d22 = defect(_mm_sub_pd(dot(m02, m12, m22, m02, m12, m22), one));
-  const __m128d d01 = defect(dot(m00, m10, m20, m01, m11, m21));
-  const __m128d d02 = defect(dot(m00, m10, m20, m02, m12, m22));
-  const __m128d d12 = defect(dot(m01, m11, m21, m02, m12, m22));
+  const V one = L::splat(S(1));
+  const V d00 = L::magnitude(L::sub(dot(m00, m10, m20, m00, m10, m20), one));
+  const V d11 = L::magnitude(L::sub(dot(m01, m11, m21, m01, m11, m21), one));
+  const V d22 = L::magnitude(L::sub(dot(m02, m12, m22, m02, m12, m22), one));
+  const V d01 = L::magnitude(dot(m00, m10, m20, m01, m11, m21));
+  const V d02 = L::magnitude(dot(m00, m10, m20, m02, m12, m22));
+  const V d12 = L::magnitude(dot(m01, m11, m21, m02, m12, m22));
   // Valid: every defect within kRotationDefectTolerance and every translation
   // coordinate within kMaxDiskLength (<= fails on NaN).
-  const __m128d rotation_bound = _mm_set1_pd(kRotationDefectTolerance<double>);
-  const __m128d length = _mm_set1_pd(kMaxDiskLength<double>);
-  const auto within = [](__m128d x, __m128d bound) { return _mm_cmple_pd(x, bound); };
-  __m128d valid = _mm_and_pd(within(d00, rotation_bound), within(d11, rotation_bound));
-  valid = _mm_and_pd(valid, _mm_and_pd(within(d22, rotation_bound), within(d01, rotation_bound)));
-  valid = _mm_and_pd(valid, _mm_and_pd(within(d02, rotation_bound), within(d12, rotation_bound)));
-  for (int k = 12; k < 15; ++k) valid = _mm_and_pd(valid, within(defect(both(k)), length));
+  const V rotation_bound = L::splat(kRotationDefectTolerance<S>);
+  const V length = L::splat(kMaxDiskLength<S>);
+  V valid = L::both_and(L::within(d00, rotation_bound), L::within(d11, rotation_bound));
+  valid = L::both_and(valid,
+                      L::both_and(L::within(d22, rotation_bound), L::within(d01, rotation_bound)));
+  valid = L::both_and(valid,
+                      L::both_and(L::within(d02, rotation_bound), L::within(d12, rotation_bound)));
+  for (int k = 12; k < 15; ++k) valid = L::both_and(valid, L::within(L::magnitude(both(k)), length));
   // Orthonormal: the largest defect within the tolerance (the maxima are
   // NaN-free where the pose is valid, the only case where they are read).
-  const __m128d largest = _mm_max_pd(_mm_max_pd(_mm_max_pd(d00, d11), _mm_max_pd(d22, d01)),
-                                     _mm_max_pd(d02, d12));
-  const int orthonormal = _mm_movemask_pd(within(largest, _mm_set1_pd(orthonormal_tolerance)));
-  return {_mm_movemask_pd(valid) == 3, (orthonormal & 1) != 0, (orthonormal & 2) != 0};
+  const V largest =
+      L::max(L::max(L::max(d00, d11), L::max(d22, d01)), L::max(d02, d12));
+  const int orthonormal = L::lanes(L::within(largest, L::splat(orthonormal_tolerance)));
+  return {L::lanes(valid) == 3, (orthonormal & 1) != 0, (orthonormal & 2) != 0};
 }
 #endif
-
-/// checkDiskPose of X_A and X_B, in one pass where SSE2 allows (double).
+/// checkDiskPose of X_A and X_B, in one pass where SSE2 allows.
 template <typename S>
 [[gnu::always_inline]] inline TwoPoseCheck checkTwoPoses(const fcl::Transform3<S>& X_A,
                                                          const fcl::Transform3<S>& X_B,
                                                          S orthonormal_tolerance) {
 #if defined(__SSE2__)
-  if constexpr (std::is_same_v<S, double>) {
+  if constexpr (std::is_same_v<S, double> || std::is_same_v<S, float>) {
     using Matrix = std::decay_t<decltype(X_A.matrix())>;
     static_assert(Matrix::RowsAtCompileTime == 4 && !Matrix::IsRowMajor,
                   "checkTwoPosesTwoLanes reads column-major 4x4 matrices");
