@@ -96,7 +96,8 @@ struct DiskPoseCheck {
 
 /// isValidDiskPose's rule, one entry at a time: the translation's range and the
 /// six distinct entries of R^T R - I, written without branches (NaN fails every
-/// comparison). checkDiskPose's form in float, and wherever SSE2 is missing.
+/// comparison). The checks' form wherever SSE2 is missing, and the reference
+/// test_robustness compares the two-lane form with.
 template <typename S>
 inline DiskPoseCheck checkDiskPoseOneByOne(const fcl::Transform3<S>& X_WD,
                                            S orthonormal_tolerance) {
@@ -115,67 +116,6 @@ inline DiskPoseCheck checkDiskPoseOneByOne(const fcl::Transform3<S>& X_WD,
     largest = std::max(largest, std::abs(defect));
   }
   return {valid, largest <= orthonormal_tolerance};
-}
-
-#if defined(__SSE2__)
-/// The same rule for double with SSE2's two-lane vectors, three pairs of R^T R's
-/// entries at a time: the same products summed in the same order, so the same
-/// defects to the bit and the same verdicts (test_robustness compares the two),
-/// in fewer instructions: the check runs on both poses of every query.
-/// m: the 4x4 matrix, column-major (M(k, i) = m[4 i + k]).
-inline DiskPoseCheck checkDiskPoseTwoLanes(const double* m, double orthonormal_tolerance) {
-  // Row k of the rotation adds (M_k0, M_k1)^2 to the lanes (G00, G11),
-  // (M_k2, M_k0) * (M_k2, M_k1) to (G22, G01) and (M_k0, M_k1) M_k2 to (G02, G12).
-  struct Lanes {
-    __m128d diagonal, mixed, with_last;
-  };
-  const auto row = [m](int k) {
-    const __m128d first_two = _mm_loadh_pd(_mm_load_sd(m + k), m + 4 + k);
-    const __m128d last = _mm_load1_pd(m + 8 + k);
-    const __m128d last_first = _mm_loadh_pd(_mm_load_sd(m + 8 + k), m + k);
-    const __m128d last_second = _mm_loadh_pd(_mm_load_sd(m + 8 + k), m + 4 + k);
-    return Lanes{_mm_mul_pd(first_two, first_two), _mm_mul_pd(last_first, last_second),
-                 _mm_mul_pd(first_two, last)};
-  };
-  Lanes gram = row(0);
-  for (int k = 1; k < 3; ++k) {
-    const Lanes terms = row(k);
-    gram = {_mm_add_pd(gram.diagonal, terms.diagonal), _mm_add_pd(gram.mixed, terms.mixed),
-            _mm_add_pd(gram.with_last, terms.with_last)};
-  }
-  const __m128d magnitude = _mm_castsi128_pd(_mm_set1_epi64x(0x7fffffffffffffffLL));
-  const __m128d defect_a = _mm_and_pd(_mm_sub_pd(gram.diagonal, _mm_set1_pd(1.0)), magnitude);
-  const __m128d defect_b = _mm_and_pd(_mm_sub_pd(gram.mixed, _mm_set_pd(0.0, 1.0)), magnitude);
-  const __m128d defect_c = _mm_and_pd(gram.with_last, magnitude);
-  const auto all_within = [&](double tolerance) {  // <= fails on NaN
-    const __m128d bound = _mm_set1_pd(tolerance);
-    return _mm_movemask_pd(_mm_and_pd(_mm_and_pd(_mm_cmple_pd(defect_a, bound),
-                                                 _mm_cmple_pd(defect_b, bound)),
-                                      _mm_cmple_pd(defect_c, bound))) == 3;
-  };
-  const __m128d length = _mm_set1_pd(kMaxDiskLength<double>);
-  const __m128d translation_xy = _mm_and_pd(_mm_loadu_pd(m + 12), magnitude);
-  const __m128d translation_z = _mm_and_pd(_mm_load_sd(m + 14), magnitude);
-  const bool translation_valid = _mm_movemask_pd(_mm_cmple_pd(translation_xy, length)) == 3 &&
-                                 (_mm_movemask_pd(_mm_cmple_sd(translation_z, length)) & 1) == 1;
-  return {translation_valid && all_within(kRotationDefectTolerance<double>),
-          all_within(orthonormal_tolerance)};
-}
-#endif
-
-/// isValidDiskPose's verdict and whether the rotation is within
-/// `orthonormal_tolerance` of orthonormal, in one pass over the pose.
-template <typename S>
-inline DiskPoseCheck checkDiskPose(const fcl::Transform3<S>& X_WD, S orthonormal_tolerance) {
-#if defined(__SSE2__)
-  if constexpr (std::is_same_v<S, double>) {
-    using Matrix = std::decay_t<decltype(X_WD.matrix())>;
-    static_assert(Matrix::RowsAtCompileTime == 4 && !Matrix::IsRowMajor,
-                  "checkDiskPoseTwoLanes reads a column-major 4x4 matrix");
-    return checkDiskPoseTwoLanes(X_WD.matrix().data(), orthonormal_tolerance);
-  }
-#endif
-  return checkDiskPoseOneByOne(X_WD, orthonormal_tolerance);
 }
 
 /// checkDiskPose of two poses at once: both valid, and each one's orthonormal
@@ -271,6 +211,24 @@ template <typename S>
   return {L::lanes(valid) == 3, (orthonormal & 1) != 0, (orthonormal & 2) != 0};
 }
 #endif
+/// isValidDiskPose's verdict and whether the rotation is within
+/// `orthonormal_tolerance` of orthonormal, in one pass over the pose: with SSE2
+/// checkTwoPosesTwoLanes with the pose in both lanes.
+template <typename S>
+inline DiskPoseCheck checkDiskPose(const fcl::Transform3<S>& X_WD, S orthonormal_tolerance) {
+#if defined(__SSE2__)
+  if constexpr (std::is_same_v<S, double> || std::is_same_v<S, float>) {
+    using Matrix = std::decay_t<decltype(X_WD.matrix())>;
+    static_assert(Matrix::RowsAtCompileTime == 4 && !Matrix::IsRowMajor,
+                  "checkTwoPosesTwoLanes reads column-major 4x4 matrices");
+    const S* m = X_WD.matrix().data();
+    const TwoPoseCheck check = checkTwoPosesTwoLanes(m, m, orthonormal_tolerance);
+    return {check.valid, check.orthonormal_a};
+  }
+#endif
+  return checkDiskPoseOneByOne(X_WD, orthonormal_tolerance);
+}
+
 /// checkDiskPose of X_A and X_B, in one pass where SSE2 allows.
 template <typename S>
 [[gnu::always_inline]] inline TwoPoseCheck checkTwoPoses(const fcl::Transform3<S>& X_A,
