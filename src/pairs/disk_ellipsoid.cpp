@@ -169,6 +169,15 @@ constexpr int kMaxRimSteps = 8;
 /// and pairs apart get one more start (ellipsoidApart) before the generic
 /// solver.
 constexpr int kStepsToSeparate = 3;
+/// The certificate (two square roots and a division beyond the step's own
+/// quantities) is evaluated only after a saddle step no larger than this, the
+/// larger of |dw| / |w| and the turn in radians: Newton converges
+/// quadratically, so after a larger step the gap cannot close yet. On the
+/// report's 2,000 cases every certificate that closes follows a step of at most
+/// 1.6e-3, and 3,991 evaluations after a step become 2,169 (none lost); none is
+/// formed after the dual step (none closed there). The lower bound is also
+/// formed at step kStepsToSeparate, for its test.
+constexpr double kCertifyAfterStep = 1e-2;
 /// ellipsoidOverlap's Newton steps on its secular equation; undecided after
 /// (a pair touching to rounding).
 constexpr int kMaxOverlapSteps = 12;
@@ -316,6 +325,7 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
   // the size of 1 at any length scale; at the start |w|^2 r^2 stands for it.
   const double inverse_r2 = 1.0 / (disk.r * disk.r);
   double turn_scale = inverse_r2 / w.squaredNorm();
+  bool small_step = false;  // the last step was within kCertifyAfterStep (the dual step is not)
   for (int step = 0;; ++step) {
     const Vec3 e2_w = e2.cwiseProduct(w);
     const double a = std::sqrt(w.dot(e2_w));
@@ -323,16 +333,20 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
     const Vec3 q = e2_w * (-1.0 / a);
     const Vec3 radial = rim.x() * disk.u + rim.y() * disk.v;
     const Vec3 p = disk.c + disk.r * radial;
-    const double upper = (q - p).norm();
-    const double lower =
-        (-a - w.dot(disk.c) - disk.r * disk.inPlane(w).norm()) / w.norm();
-    if (upper - lower <= tolerance) return certifiedOrBound(lower, upper, p, q, scale);
-    if (!(lower > 0.0) && step == kStepsToSeparate) {
-      if (*apart) return LeafToDisk{};
-      const OverlapVerdict verdict = ellipsoidOverlap(ellipsoid.e, disk);
-      *apart = verdict.kind == OverlapVerdict::apart;
-      return verdict.kind == OverlapVerdict::overlap ? meetingAt(verdict.common_point)
-                                                     : LeafToDisk{};
+    if (small_step || step == kStepsToSeparate) {
+      const double lower =
+          (-a - w.dot(disk.c) - disk.r * disk.inPlane(w).norm()) / w.norm();
+      if (small_step) {
+        const double upper = (q - p).norm();
+        if (upper - lower <= tolerance) return certifiedOrBound(lower, upper, p, q, scale);
+      }
+      if (!(lower > 0.0) && step == kStepsToSeparate) {
+        if (*apart) return LeafToDisk{};
+        const OverlapVerdict verdict = ellipsoidOverlap(ellipsoid.e, disk);
+        *apart = verdict.kind == OverlapVerdict::apart;
+        return verdict.kind == OverlapVerdict::overlap ? meetingAt(verdict.common_point)
+                                                       : LeafToDisk{};
+      }
     }
     if (step == kMaxRimSteps) return LeafToDisk{};
     // Newton: M dw + p' dtheta = q - p - w, p'.dw - w.(p - c) dtheta = -w.p',
@@ -369,7 +383,10 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
       return LeafToDisk{};
     }
     const Vec3 y = residual - turn * tangent;  // dw = M^-1 y
-    w += a * d.cwiseProduct(y) + z * (z.dot(y) * inverse_sigma);
+    const Vec3 dw = a * d.cwiseProduct(y) + z * (z.dot(y) * inverse_sigma);
+    small_step = std::abs(turn) <= kCertifyAfterStep &&
+                 dw.squaredNorm() <= kCertifyAfterStep * kCertifyAfterStep * w.squaredNorm();
+    w += dw;
     rim = Vec2(cos * rim.x() - sin * rim.y(), cos * rim.y() + sin * rim.x());
     turn_scale = inverse_sigma * inverse_r2;
   }
