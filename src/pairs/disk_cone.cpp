@@ -159,10 +159,13 @@ void addConeSideCandidates(const DiskInShape& disk, double radius, double half_l
 /// The slant side's closed form (ConeTraits::sideAgainstDisk) takes at most
 /// this many Newton steps along the rim, and has converged once a step is
 /// below kSideAngleTolerance radians: Newton's error after a step s is then
-/// about s^2 (the rim's curvatures relative to the radius are of order 1),
-/// far under double's resolution of the angle.
+/// about s^2 = 1e-10 rad (the rim's curvatures relative to the radius are of
+/// order 1), whose cost to the distance and to the certificate along the pair
+/// (second order in it, ~1e-20 of the scene) is far under the 1e-14 the
+/// certificate must close to. On the report's 2,000 cone cases the side takes
+/// 2,678 Newton steps, against 3,209 to 1e-9 rad, with the same answers.
 constexpr int kMaxSideNewtonSteps = 8;
-constexpr double kSideAngleTolerance = 1e-9;
+constexpr double kSideAngleTolerance = 1e-5;
 /// Where Newton has no step (phi concave along the rim, or a turn beyond
 /// kShapeMaxRimStep), the side's iteration turns this many radians down phi's
 /// slope instead.
