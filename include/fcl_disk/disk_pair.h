@@ -202,15 +202,17 @@ template <typename S>
                       L::both_and(L::within(d22, rotation_bound), L::within(d01, rotation_bound)));
   valid = L::both_and(valid,
                       L::both_and(L::within(d02, rotation_bound), L::within(d12, rotation_bound)));
-  for (int k = 12; k < 15; ++k) valid = L::both_and(valid, L::within(L::magnitude(both(k)), length));
+  for (int k = 12; k < 15; ++k) {
+    valid = L::both_and(valid, L::within(L::magnitude(both(k)), length));
+  }
   // Orthonormal: the largest defect within the tolerance (the maxima are
   // NaN-free where the pose is valid, the only case where they are read).
-  const V largest =
-      L::max(L::max(L::max(d00, d11), L::max(d22, d01)), L::max(d02, d12));
+  const V largest = L::max(L::max(L::max(d00, d11), L::max(d22, d01)), L::max(d02, d12));
   const int orthonormal = L::lanes(L::within(largest, L::splat(orthonormal_tolerance)));
   return {L::lanes(valid) == 3, (orthonormal & 1) != 0, (orthonormal & 2) != 0};
 }
 #endif
+
 /// isValidDiskPose's verdict and whether the rotation is within
 /// `orthonormal_tolerance` of orthonormal, in one pass over the pose: with SSE2
 /// checkTwoPosesTwoLanes with the pose in both lanes.
