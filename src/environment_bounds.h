@@ -245,16 +245,28 @@ LeafToDisk certifiedAlongItself(const DiskInShape& disk, LeastAlong&& least_alon
   return certifiedOrBound(lower, upper, p_disk, p_leaf, scale, mismatch);
 }
 
-/// Raises `lower` to the certificate along a segment's pair, in the direction
+/// The certificate along a segment's pair, in the direction
 /// SegmentToDisk::certificateDirection gives (the one segmentToDisk's
-/// precision is chosen for), `least_along` as certifyAlongPair's.
+/// precision is chosen for), w: least_along(w) - h_K(w), to be divided by
+/// |w| (`length`), `least_along` as certifyAlongPair's.
+struct AlongSegmentPair {
+  double numerator;
+  double length;
+};
+template <typename LeastAlong>
+AlongSegmentPair alongSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
+                                  const SegmentToDisk& pair) {
+  const Vec3 w = pair.certificateDirection();
+  return {least_along(w) - disk.support(w), w.norm()};
+}
+
+/// Raises `lower` to the certificate along a segment's pair (alongSegmentPair).
 template <typename LeastAlong>
 void certifyAlongSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
                              const SegmentToDisk& pair, double* lower) {
-  const Vec3 w = pair.certificateDirection();
-  const double length = w.norm();
-  if (!(length > 0.0)) return;
-  *lower = std::max(*lower, (least_along(w) - disk.support(w)) / length);
+  const AlongSegmentPair along = alongSegmentPair(disk, least_along, pair);
+  if (!(along.length > 0.0)) return;
+  *lower = std::max(*lower, along.numerator / along.length);
 }
 
 /// certifiedAlongItself for a segment's pair, along its certificateDirection
@@ -264,14 +276,13 @@ template <typename LeastAlong>
 LeafToDisk certifiedSegmentPair(const DiskInShape& disk, LeastAlong&& least_along,
                                 const SegmentToDisk& pair, double scale, double mismatch = 0.0,
                                 double inflation = 0.0) {
-  const Vec3 w = pair.certificateDirection();
-  const double length = w.norm();
+  const AlongSegmentPair along = alongSegmentPair(disk, least_along, pair);
   const double upper = pair.distance - inflation;
   const Vec3 p_leaf = inflation > 0.0 ? Vec3(pair.p_segment - (inflation / pair.distance) *
                                                                  (pair.p_segment - pair.p_disk))
                                        : pair.p_segment;
-  return certifiedOrBoundAlong(least_along(w) - disk.support(w) - inflation * length, length,
-                               upper, pair.p_disk, p_leaf, scale, mismatch);
+  return certifiedOrBoundAlong(along.numerator - inflation * along.length, along.length, upper,
+                               pair.p_disk, p_leaf, scale, mismatch);
 }
 
 /// The stretch [low, high] of tau for which the in-plane point s + tau along
