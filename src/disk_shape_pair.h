@@ -43,7 +43,8 @@ DiskShapeDistanceResult<S> nanDiskShapeResult() {
   return result;
 }
 
-/// Whether the pair is valid (isValidDiskAndShapePose), and whether both
+/// Whether the pair is valid (isValidDiskAndShapePose, include/fcl_disk/disk_pair.h),
+/// and whether both
 /// rotations are used as given (checkDiskPose with kAsGivenRotationTolerance:
 /// in double, within kOrthonormalInDouble; in float never), so that the disk's
 /// axes in the shape's frame are orthonormal to double rounding: one pass over
@@ -58,19 +59,6 @@ template <typename S>
     S radius, const fcl::Transform3<S>& X_WD, const fcl::Transform3<S>& X_WS) {
   const TwoPoseCheck poses = checkTwoPoses(X_WD, X_WS, kAsGivenRotationTolerance<S>);
   return {isValidDiskRadius(radius) && poses.valid, poses.orthonormal_a && poses.orthonormal_b};
-}
-
-/// The disk's pose and radius, and the shape's pose, describe a pair (the shape's
-/// own dimensions are the pair's to check). A shape pose obeys the disk pose rule:
-/// finite, within kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance.
-/// Both poses in one pass (checkTwoPoses). Inlined whole, for the closed forms
-/// that need no more (the sphere, the halfspace, the plane): only the verdict
-/// they use is then computed.
-template <typename S>
-[[gnu::always_inline]] inline bool isValidDiskAndShapePose(S radius,
-                                                           const fcl::Transform3<S>& X_WD,
-                                                           const fcl::Transform3<S>& X_WS) {
-  return isValidDiskRadius(radius) && checkTwoPoses(X_WD, X_WS, S(0)).valid;
 }
 
 /// The result of a solution in the shape's frame, or (toWorldFromShapeOrigin)

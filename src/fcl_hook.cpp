@@ -504,16 +504,6 @@ struct DiskEnvironment<fcl::GEOM_OCTREE, S> {
 template <int NodeType, typename S>
 constexpr bool kHasDiskEnvironment = DiskEnvironment<NodeType, S>::kAnswered;
 
-/// Whether a pair of a Disk and a mesh or octree describes a query: the disk's
-/// pose and radius are a disk's and the other pose is a rigid one, by the rule
-/// for disk poses (finite, rotation orthonormal). Otherwise the answer is NaN /
-/// no contact.
-template <typename S>
-bool isDiskEnvironmentPair(const Disk<S>& disk, const Transform3<S>& X_WD,
-                           const Transform3<S>& X_WE) {
-  return isValidDiskRadius(disk.radius) && internal::checkTwoPoses(X_WD, X_WE, S(0)).valid;
-}
-
 /// Distance between a Disk and a mesh or octree (node type EnvType), in FCL's
 /// argument order: the disk is o1 when `disk_first` (octrees only).
 template <int EnvType, typename S>
@@ -524,7 +514,8 @@ S answerDiskEnvironmentDistance(const Disk<S>& disk, const Transform3<S>& X_WD,
                                 fcl::DistanceResult<S>& result) {
   if (distanceIsSettled(result)) return result.min_distance;
   ++t_disk_answers;
-  if (!isDiskEnvironmentPair(disk, X_WD, X_WE)) {
+  // A radius or a pose that fails isValidDiskAndShapePose: no distance (NaN).
+  if (!internal::isValidDiskAndShapePose(disk.radius, X_WD, X_WE)) {
     return disk_first ? answerNoDistance<S>(&disk, environment, result)
                       : answerNoDistance<S>(environment, &disk, result);
   }
@@ -545,7 +536,7 @@ std::size_t answerDiskEnvironmentCollision(const Disk<S>& disk, const Transform3
   if (request.isSatisfied(result)) return result.numContacts();
   ++t_disk_answers;
   // No contact can be shown for input that describes no pose.
-  if (!isDiskEnvironmentPair(disk, X_WD, X_WE)) return result.numContacts();
+  if (!internal::isValidDiskAndShapePose(disk.radius, X_WD, X_WE)) return result.numContacts();
   using Environment = DiskEnvironment<EnvType, S>;
   if constexpr (EnvType == fcl::GEOM_OCTREE) {
     if (disk_first) {

@@ -397,9 +397,9 @@ TYPED_TEST(Robustness, RotationWithinToleranceIsTheDiskOfItsNormal) {
   }
 }
 
-// checkDiskPose's two-lane form (double, SSE2), checkTwoPoses (both poses of a
-// query in one pass, double and float) and the entry-by-entry rule give the
-// same verdicts: on rotations perturbed entry by entry around both tolerances
+// checkDiskPose and checkTwoPoses (both poses of a query in one pass), in
+// SSE2's two lanes in double and in float, and the entry-by-entry rule give
+// the same verdicts: on rotations perturbed entry by entry around both tolerances
 // (defects from 1e-17 (double) or 1e-9 (float) to 1e-4 or 1e-3, either sign),
 // on every non-finite entry and on translations around kMaxDiskLength;
 // checkTwoPoses on each such pose paired with the one before, in both orders.

@@ -249,6 +249,19 @@ template <typename S>
   return {a.valid && b.valid, a.orthonormal, b.orthonormal};
 }
 
+/// The disk's pose and radius, and another shape's pose (a primitive's, a
+/// mesh's, an octree's), describe a pair (the shape's own dimensions are the
+/// pair's to check). The other pose obeys the disk pose rule: finite, within
+/// kMaxDiskLength, rotation orthonormal to kRotationDefectTolerance. Both poses
+/// in one pass (checkTwoPoses). Inlined whole, for the closed forms that need no
+/// more (the sphere, the halfspace, the plane): only the verdict they use is
+/// then computed.
+template <typename S>
+[[gnu::always_inline]] inline bool isValidDiskAndShapePose(S radius,
+                                                           const fcl::Transform3<S>& X_WD,
+                                                           const fcl::Transform3<S>& X_WS) {
+  return isValidDiskRadius(radius) && checkTwoPoses(X_WD, X_WS, S(0)).valid;
+}
 }  // namespace internal
 /// @endcond
 

@@ -169,7 +169,7 @@ constexpr int kMaxRimSteps = 8;
 /// and pairs apart get one more start (ellipsoidApart) before the generic
 /// solver.
 constexpr int kStepsToSeparate = 3;
-/// The certificate (two square roots and a division beyond the step's own
+/// The certificate (three square roots and a division beyond the step's own
 /// quantities) is evaluated only after a saddle step no larger than this, the
 /// larger of |dw| / |w| and the turn in radians: Newton converges
 /// quadratically, so after a larger step the gap cannot close yet. On the
