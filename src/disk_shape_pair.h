@@ -33,6 +33,12 @@ inline bool areValidShapeLengths(std::initializer_list<double> lengths) {
   return valid;
 }
 
+/// intersect()'s early exit proves a pair apart only beyond this many touching
+/// tolerances: twice, so that the rounding of its bound (a few eps * scale,
+/// against the tolerance's 450) can never call apart a pair the full decision
+/// calls touching.
+constexpr double kApartMargin = 2.0;
+
 template <typename S>
 DiskShapeDistanceResult<S> nanDiskShapeResult() {
   const S nan = std::numeric_limits<S>::quiet_NaN();
@@ -330,6 +336,13 @@ struct GenericDiskShapePair {
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     const double touching = kShapeTouchingTolerance * scale;
+    // Apart by more than twice the touching tolerance (and the Target's
+    // supportMismatch): every decision below would say apart too, its
+    // distance being at least the bound less its rounding, a few eps * scale.
+    if (apartTowardsCentre(target, disk, rho,
+                           kApartMargin * touching + supportMismatchOf(target))) {
+      return false;
+    }
     // The closed form distance() tries first decides here too, so that a pair
     // at distance 0 intersects.
     DiskShapeSolution closed;

@@ -26,6 +26,9 @@
 //   double supportMismatch() const;  // a length >= 0; 0 when not provided
 // The certificate compares the two sets, so it closes at that much more gap,
 // and the answer is exact to it (docs/disk_shape_distance.md, section 4).
+// A Target whose frame origin is not its middle (a triangle, a Convex) says
+// where that is, for the intersection test's early exit (apartTowardsCentre):
+//   Vec3 centre() const;  // a point of X; the origin when not provided
 #pragma once
 
 #include <Eigen/Core>
@@ -407,6 +410,37 @@ double certificateAlong(const Target& target, const DiskInShape& disk, double rh
   const double length_squared = w.squaredNorm();
   if (!(length_squared > 0.0)) return 0.0;
   return (leastAlong(target, w) - disk.support(w)) / std::sqrt(length_squared) - rho;
+}
+
+template <typename Target, typename = void>
+struct HasCentre : std::false_type {};
+template <typename Target>
+struct HasCentre<Target, std::void_t<decltype(std::declval<const Target&>().centre())>>
+    : std::true_type {};
+
+/// The Target's centre(), its frame origin if it has none (FCL's primitives
+/// are built about their origin).
+template <typename Target>
+Vec3 centreOf(const Target& target) {
+  if constexpr (HasCentre<Target>::value) {
+    return target.centre();
+  } else {
+    return Vec3::Zero();
+  }
+}
+
+/// Whether the certificate along w = centre - p, p the disk's point nearest
+/// the shape's centre (the pair's separating direction, were X a ball about
+/// its centre), proves the disk and X + B_rho more than `margin` apart. A
+/// closed form and a few square roots: most pairs a broadphase hands to a
+/// collision test are apart, and on the report's cases this direction proves
+/// 96-98% of the separated ones (docs/disk_shape_distance.md, section 5).
+/// w = 0 (the centre on the disk) and NaN prove nothing.
+template <typename Target>
+bool apartTowardsCentre(const Target& target, const DiskInShape& disk, double rho,
+                        double margin) {
+  const Vec3 centre = centreOf(target);
+  return certificateAlong(target, disk, rho, centre - disk.point(disk.nearest(centre))) > margin;
 }
 
 /// How close to closing the separation's certificate must be before the other

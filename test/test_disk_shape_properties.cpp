@@ -132,6 +132,41 @@ fcl::Transform3<S> randomPose(Random& random, double spread) {
   return X.template cast<S>();
 }
 
+/// The touching rule (closer than 1e-13 * scale counts as touching, scale = r +
+/// the shape's bounding radius + the centres' distance) at the tolerance's
+/// multiples: a separated pair's shape moved along q - p to distance `multiple`
+/// * 1e-13 * scale (exactly, up to the rounding of the moved pose: the planes
+/// normal to q - p through p and q keep separating the sets) intersects below 1
+/// and not above, through diskShapeIntersect and fcl::collide's default request,
+/// on either side of the early exit's margin (twice the tolerance,
+/// src/disk_shape_pair.h). The scale is that of the moved pose, taken low for
+/// the touching multiple and high (the oracle's bounding radius, at least the
+/// solver's) for the others.
+template <typename S>
+void checkTouchingBand(S r, const fcl::Transform3<S>& X_WD,
+                       const std::shared_ptr<fcl::ShapeBase<S>>& shape,
+                       const fcl::Transform3<S>& X_WS, const Answer<S>& a, double bounding_radius,
+                       const std::string& what) {
+  const fcl::Vector3<S> along = (a.q - a.p) / a.distance;
+  const fcl::Vector3<S> touching_centre = X_WS.translation() - a.distance * along;
+  const double low_scale = double(r) + double((X_WD.translation() - touching_centre).norm());
+  if (!(double(a.distance) > 1e-9 * low_scale)) return;
+  fcl::CollisionObject<S> disk_object(std::make_shared<fcl_disk::Disk<S>>(r), X_WD);
+  for (const double multiple : {0.5, 1.5, 2.5, 4.0, 40.0}) {
+    const bool touching = multiple < 1.0;
+    const double scale = touching ? low_scale : low_scale + bounding_radius;
+    fcl::Transform3<S> X_moved = X_WS;
+    X_moved.translation() -= (a.distance - S(multiple * 1e-13 * scale)) * along;
+    ASSERT_EQ(diskShapeIntersectAny(r, X_WD, *shape, X_moved), touching)
+        << "moved to " << multiple << " touching tolerances, distance " << double(direct(r, X_WD, *shape, X_moved).distance) / (1e-13 * scale) << " of them\n" << what;
+    fcl::CollisionObject<S> shape_object(shape, X_moved);
+    fcl::CollisionResult<S> decision;
+    fcl::collide(&disk_object, &shape_object, fcl::CollisionRequest<S>(), decision);
+    ASSERT_EQ(decision.isCollision(), touching)
+        << "fcl::collide, moved to " << multiple << " touching tolerances\n" << what;
+  }
+}
+
 /// `poses` random poses of `kind`, half of them scaled by 10^x, x uniform in
 /// [-max_exponent, max_exponent].
 template <typename S>
@@ -213,6 +248,15 @@ void checkPair(Kind kind, int poses = kPosesPerPair, double max_exponent = 6.0) 
         X_moved.translation() += (contact.penetration_depth + S(1e-6 * scale)) * contact.normal;
         ASSERT_GT(double(direct(r, X_WD, *fcl_shape, X_moved).distance), 0.0) << what.str();
       }
+    }
+    // FCL's default request (no contact asked) decides as the one above.
+    fcl::CollisionResult<S> decision;
+    fcl::collide(&disk_object, &shape_object, fcl::CollisionRequest<S>(), decision);
+    ASSERT_EQ(decision.isCollision(), collision.isCollision()) << what.str();
+    // Not the ellipsoid: where its iteration stops next to a grazing contact it
+    // decides to its distance's accuracy, 1e-12 * scale (the header says so).
+    if (!T::kFloat && !boundary && kind != Kind::ellipsoid && a.distance > 0) {
+      checkTouchingBand(r, X_WD, fcl_shape, X_WS, a, double(shape.boundingRadius()), what.str());
     }
   }
   EXPECT_GT(separated, poses / 10) << kindName(kind);

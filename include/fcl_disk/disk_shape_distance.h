@@ -89,7 +89,9 @@ DiskShapeDistanceResult<S> diskShapeDistance(S radius, const fcl::Transform3<S>&
 
 /// Whether the disk and `shape` share a point (closed sets: touching counts), and
 /// if so a contact. Frames, shapes and invalid input as diskShapeDistance (invalid
-/// input: false). Decision tolerance: closer than 1e-13 * scale counts as touching.
+/// input: false). Decision tolerance: closer than 1e-13 * scale counts as touching
+/// (for the Ellipsoid, whose iteration can stop next to a grazing contact with
+/// the gap open, within its distance's 1e-12 * scale of that).
 ///
 /// Contact convention (FCL's for fcl::Contact, the disk as object 1): `pos` is a
 /// point of both shapes (for an overlap the iteration left open and the

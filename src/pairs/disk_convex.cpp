@@ -830,6 +830,9 @@ struct ConvexTarget {
   /// disk_shape_solver.h).
   double supportMismatch() const { return face_thickness; }
 
+  /// The vertices' mean (the hull's own frame origin may lie anywhere).
+  Vec3 centre() const { return geometry.centre; }
+
   /// max over the vertices of w.v.
   double supportValue(const Vec3& w) const { return mostAlong(w); }
 

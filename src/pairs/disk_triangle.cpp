@@ -22,6 +22,11 @@ struct TriangleTarget {
 
   Projection project(const Vec3& x) const { return triangle.project(x); }
 
+  /// The centroid (the frame's origin is the mesh's, anywhere).
+  Vec3 centre() const {
+    return (triangle.vertices[0] + triangle.vertices[1] + triangle.vertices[2]) / 3.0;
+  }
+
   Vec3 support(const Vec3& w) const {
     const auto& vertices = triangle.vertices;
     int best = 0;  // ties take the first vertex
