@@ -329,9 +329,11 @@ struct GenericDiskShapePair {
   }
 
   /// intersect() in the shape's frame, for a valid pair; `disk` as
-  /// solveInShapeFrame's.
+  /// solveInShapeFrame's. `try_early_exit`: false for the leaves of meshes and
+  /// octrees, which reach here only when their bounding volumes meet the
+  /// disk's, so that the early exit would seldom prove them apart.
   static bool intersectInShapeFrame(const DiskInShape& disk, const Shape& shape,
-                                    FrameContact* contact) {
+                                    FrameContact* contact, bool try_early_exit = true) {
     const auto target = Traits::target(shape);
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
@@ -339,8 +341,8 @@ struct GenericDiskShapePair {
     // Apart by more than twice the touching tolerance (and the Target's
     // supportMismatch): every decision below would say apart too, its
     // distance being at least the bound less its rounding, a few eps * scale.
-    if (apartTowardsCentre(target, disk, rho,
-                           kApartMargin * touching + supportMismatchOf(target))) {
+    if (try_early_exit &&
+        apartTowardsCentre(target, disk, rho, kApartMargin * touching + supportMismatchOf(target))) {
       return false;
     }
     // The closed form distance() tries first decides here too, so that a pair

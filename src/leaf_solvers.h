@@ -18,6 +18,8 @@ namespace internal {
 DiskShapeSolution solveDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b,
                                     const Vec3& c);
 /// Whether the disk meets the triangle; if so, `contact` (when given) in that frame.
+/// For a mesh's leaf, whose volume met the disk's: without diskShapeIntersect's
+/// early exit (apartTowardsCentre), which seldom proves such pairs apart.
 bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b, const Vec3& c,
                            FrameContact* contact);
 
@@ -25,6 +27,8 @@ bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b
 /// (solveDiskBox: the generic solver's solution; the caller has tried
 /// alignedBoxToDisk).
 DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half);
+/// Whether the disk meets that box (an octree's occupied cell, whose bounds met
+/// the disk's: without the early exit, as intersectDiskTriangle).
 bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact);
 
 /// The capsule of radius `radius` about the segment {(0, 0, z) : |z| <=

@@ -117,7 +117,7 @@ DiskShapeSolution solveDiskBox(const DiskInShape& disk, const Vec3& half) {
 
 bool intersectDiskBox(const DiskInShape& disk, const Vec3& half, FrameContact* contact) {
   return DiskShapePair<fcl::Box<double>>::intersectInShapeFrame(disk, fcl::Box<double>(2.0 * half),
-                                                               contact);
+                                                               contact, /*try_early_exit=*/false);
 }
 
 }  // namespace internal

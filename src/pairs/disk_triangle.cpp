@@ -116,7 +116,8 @@ bool intersectDiskTriangle(const DiskInShape& disk, const Vec3& a, const Vec3& b
                            FrameContact* contact) {
   const fcl::TriangleP<double> triangle(a, b, c);
   return TriangleTraits<double>::valid(triangle) &&
-         DiskShapePair<fcl::TriangleP<double>>::intersectInShapeFrame(disk, triangle, contact);
+         DiskShapePair<fcl::TriangleP<double>>::intersectInShapeFrame(disk, triangle, contact,
+                                                                      /*try_early_exit=*/false);
 }
 
 }  // namespace internal
