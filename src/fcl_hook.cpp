@@ -135,6 +135,39 @@ void keepIfNearer(fcl::DistanceResult<S>& result, S distance, const CollisionGeo
   result.nearest_points[1] = p2;
 }
 
+/// A pair proven no nearer than the result's distance by more than this many
+/// scene sizes is not solved: beyond every rounding the bound and the solver's
+/// distance carry (float's half ulp of the answer, 6e-8; in double a few eps).
+constexpr double kNoNearerMargin = 1e-6;
+
+/// Whether the valid disk pair (as exactDiskDistance validates it) lies
+/// farther apart than `held`, a positive distance the result already
+/// holds (a broadphase manager's distance callback keeps one result over its
+/// candidate pairs, whose boxes only bound them), by more than kNoNearerMargin
+/// * (r1 + r2 + |w|): then its answer could not replace the one held. The
+/// certificate along the centres' line w = c2 - c1 (docs/exact_distance.md,
+/// section 2), with the disks' supports r_i |n_i x w| / (|n_i| |w|) taken
+/// from their normals alone, as the solvers take each disk. Invalid pairs are
+/// left to the solver, which answers them with NaN.
+template <typename S>
+bool diskPairNoNearerThan(S r1, const Transform3<S>& X_W1, S r2, const Transform3<S>& X_W2,
+                          S held) {
+  // A fresh result holds numeric_limits<S>::max(): nothing to beat, no check.
+  if (!(held > 0 && held < std::numeric_limits<S>::max())) return false;
+  if (!internal::checkDiskPair(r1, X_W1, r2, X_W2).valid) return false;
+  using Vec3 = Eigen::Vector3d;
+  const Vec3 w = (X_W2.translation().template cast<double>() -
+                  X_W1.translation().template cast<double>());
+  const Vec3 n1 = X_W1.linear().col(2).template cast<double>();
+  const Vec3 n2 = X_W2.linear().col(2).template cast<double>();
+  const double length = w.norm();
+  const double reach = double(r1) * std::sqrt(n1.cross(w).squaredNorm() / n1.squaredNorm()) +
+                       double(r2) * std::sqrt(n2.cross(w).squaredNorm() / n2.squaredNorm());
+  const double scale = double(r1) + double(r2) + length;
+  // |w| - reach / |w| > held + margin, times |w| (> 0 where it holds).
+  return length * length - reach > (double(held) + kNoNearerMargin * scale) * length;
+}
+
 /// Whether a signed answer may be minus this depth. FCL's entry, for the indep
 /// solver, answers a negative distance by asking collide() for a contact deeper
 /// than numeric_limits<S>::min() and asserts that one exists: a depth not above
@@ -151,6 +184,9 @@ S answerDiskDistance(const Disk<S>& disk1, const Transform3<S>& X_W1, const Disk
   // Same early exit as FCL's ShapeShapeDistance.
   if (distanceIsSettled(result)) return result.min_distance;
   ++t_disk_answers;
+  if (diskPairNoNearerThan(disk1.radius, X_W1, disk2.radius, X_W2, result.min_distance)) {
+    return result.min_distance;
+  }
   const bool exact =
       g_method.load(std::memory_order_relaxed) != DiskDistanceMethod::almohamad_selim;
   const DiskDistanceResult<S> answer =

@@ -305,6 +305,66 @@ TEST(Hook, ResultConventionsMatchFcls) {
   check(std::make_shared<fcl_disk::Diskd>(1.0), "fcl_disk's disk-disk");
 }
 
+// One result held over many disk pairs (as FCL's default distance callback
+// holds it over a manager's candidates) ends exactly as the nearest of their
+// fresh answers, FCL's strict "nearer" deciding ties: the pairs the hook proves
+// no nearer than the result's distance without solving them
+// (diskPairNoNearerThan) change nothing. Every other pair is the best one
+// moved rigidly and then apart or together by 1e-15 to 1e-3 of its distance,
+// inside and outside that proof's margin; an invalid pair still makes the
+// result NaN.
+TEST(Hook, AHeldResultEndsAsTheNearestFreshAnswer) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> radius(0.1, 0.6), unit(0.0, 1.0);
+  const fcl::DistanceRequestd request;
+  for (int trial = 0; trial < 200; ++trial) {
+    fcl::DistanceResultd held, best;
+    best.min_distance = std::numeric_limits<double>::max();
+    std::vector<std::unique_ptr<fcl::CollisionObjectd>> objects;
+    Transform3d best_a = randomPose(rng, 2.0), best_b = randomPose(rng, 2.0);
+    double best_r1 = radius(rng), best_r2 = radius(rng);
+    for (int k = 0; k < 12; ++k) {
+      double r1 = radius(rng), r2 = radius(rng);
+      Transform3d a = randomPose(rng, 2.0), b = randomPose(rng, 2.0);
+      if (k % 2 == 1 && best.min_distance > 0 && best.min_distance < 1e300) {
+        // The best pair, moved rigidly, then b along the line of centres by
+        // a signed 10^-15..10^-3 of the best distance.
+        const Transform3d motion = randomPose(rng, 3.0);
+        r1 = best_r1, r2 = best_r2;
+        a = motion * best_a, b = motion * best_b;
+        const Vec3 line = (b.translation() - a.translation()).normalized();
+        const double nudge = std::pow(10.0, -15.0 + 12.0 * unit(rng)) * best.min_distance;
+        b.translation() += (unit(rng) < 0.5 ? -nudge : nudge) * line;
+      }
+      objects.push_back(std::make_unique<fcl::CollisionObjectd>(
+          std::make_shared<fcl_disk::Diskd>(r1), a));
+      objects.push_back(std::make_unique<fcl::CollisionObjectd>(
+          std::make_shared<fcl_disk::Diskd>(r2), b));
+      const fcl::CollisionObjectd& o1 = *objects[objects.size() - 2];
+      const fcl::CollisionObjectd& o2 = *objects.back();
+      fcl::DistanceResultd fresh;
+      fcl::distance(&o1, &o2, request, fresh);
+      fcl::distance(&o1, &o2, request, held);
+      if (fresh.min_distance < best.min_distance) {
+        best = fresh;
+        best_a = a, best_b = b, best_r1 = r1, best_r2 = r2;
+      }
+      ASSERT_EQ(held.min_distance, best.min_distance) << "trial " << trial << " pair " << k;
+      ASSERT_EQ(held.o1, best.o1);
+      ASSERT_EQ(held.o2, best.o2);
+      ASSERT_EQ(held.nearest_points[0], best.nearest_points[0]);
+      ASSERT_EQ(held.nearest_points[1], best.nearest_points[1]);
+    }
+    if (trial % 20 == 0 && held.min_distance > 0) {
+      Transform3d sheared = randomPose(rng, 2.0);
+      sheared.linear()(0, 0) += 0.1;  // not a rotation: no disk pose
+      const fcl::CollisionObjectd invalid(std::make_shared<fcl_disk::Diskd>(0.5), sheared);
+      fcl::distance(objects[0].get(), &invalid, request, held);
+      EXPECT_TRUE(std::isnan(held.min_distance));
+    }
+  }
+}
+
 // A scene of disks (and boxes): the broadphase finds the same nearest pair and
 // the same colliding pairs as brute-force pairwise queries.
 TEST(Hook, BroadphaseAgreesWithBruteForce) {
