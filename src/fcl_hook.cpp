@@ -141,14 +141,14 @@ void keepIfNearer(fcl::DistanceResult<S>& result, S distance, const CollisionGeo
 constexpr double kNoNearerMargin = 1e-6;
 
 /// Whether the valid disk pair (as exactDiskDistance validates it) lies
-/// farther apart than `held`, a positive distance the result already
-/// holds (a broadphase manager's distance callback keeps one result over its
-/// candidate pairs, whose boxes only bound them), by more than kNoNearerMargin
-/// * (r1 + r2 + |w|): then its answer could not replace the one held. The
-/// certificate along the centres' line w = c2 - c1 (docs/exact_distance.md,
-/// section 2), with the disks' supports r_i |n_i x w| / (|n_i| |w|) taken
-/// from their normals alone, as the solvers take each disk. Invalid pairs are
-/// left to the solver, which answers them with NaN.
+/// farther apart than `held`, a positive distance the result already holds (a
+/// broadphase manager's distance callback keeps one result over its candidate
+/// pairs, whose boxes only bound them), by more than kNoNearerMargin * (r1 +
+/// r2 + |w|): then its answer could not replace the one held. The certificate
+/// along the centres' line w = c2 - c1 (docs/exact_distance.md, section 2),
+/// with the disks' supports r_i |n_i x w| / (|n_i| |w|) taken from their
+/// normals alone, as the solvers take each disk. Invalid pairs are left to
+/// the solver, which answers them with NaN.
 template <typename S>
 bool diskPairNoNearerThan(S r1, const Transform3<S>& X_W1, S r2, const Transform3<S>& X_W2,
                           S held) {
