@@ -21,6 +21,13 @@
 //                                         request (distance_tolerance 1e-6);
 //   fcl_distance/sphere_sphere/double     FCL's own closed-form sphere-sphere
 //                                         entry: about what FCL's dispatch costs;
+//   fcl_manager_distance/default_callback/<N>/double
+//                                         a DynamicAABBTree of N disks (radius
+//                                         0.3, random poses in a cube of side
+//                                         2 N^(1/3)), each iteration the nearest
+//                                         of them to one of N other disks through
+//                                         FCL's DefaultDistanceFunction, whose
+//                                         one result the candidate pairs share;
 //   overhead/typeid_x2                    the tables' "is it a Disk?" test on both
 //                                         geometries (typeid; the object-level
 //                                         entry compares type_info addresses).
@@ -29,6 +36,8 @@
 //     --benchmark_display_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
+#include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/cylinder.h>
 #include <fcl/geometry/shape/sphere.h>
 #include <fcl/narrowphase/collision.h>
@@ -36,8 +45,10 @@
 #include <fcl/narrowphase/distance.h>
 #include <fcl_disk/fcl_disk.h>
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
+#include <random>
 #include <string>
 #include <typeinfo>
 #include <vector>
@@ -203,6 +214,40 @@ void fclCollideDisk(benchmark::State& state) {
   finish(state);
 }
 
+/// A manager's nearest-disk query with FCL's default callback: the candidate
+/// pairs accumulate into one DistanceResult, so those proven no nearer than it
+/// holds are not solved (src/fcl_hook.cpp, diskPairNoNearerThan).
+void fclManagerDistance(benchmark::State& state) {
+  const int n = int(state.range(0));
+  std::mt19937_64 rng(kSeed);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const double half_side = std::cbrt(double(n));
+  const auto random_pose = [&] {
+    fcl::Transform3d X = fcl::Transform3d::Identity();
+    X.linear() = Eigen::Quaterniond(uniform(rng), uniform(rng), uniform(rng), uniform(rng))
+                     .normalized()
+                     .toRotationMatrix();
+    X.translation() = half_side * Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng));
+    return X;
+  };
+  const auto disk = std::make_shared<fcl_disk::Diskd>(0.3);
+  Objects<double> in_manager, queries;
+  fcl::DynamicAABBTreeCollisionManagerd manager;
+  for (int i = 0; i < n; ++i) {
+    in_manager.push_back(std::make_unique<fcl::CollisionObjectd>(disk, random_pose()));
+    manager.registerObject(in_manager.back().get());
+    queries.push_back(std::make_unique<fcl::CollisionObjectd>(disk, random_pose()));
+  }
+  manager.setup();
+  std::size_t i = 0;
+  for (auto _ : state) {
+    fcl::DefaultDistanceData<double> data;
+    manager.distance(queries[i++ % queries.size()].get(), &data, fcl::DefaultDistanceFunction);
+    benchmark::DoNotOptimize(data.result.min_distance);
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
 // ---- pieces of the hook's overhead ------------------------------------------
 // The tables' wrapper tells a Disk from a real Cylinder by lz == 0 and then an
 // exact typeid comparison on both geometries (Disk is final); this times that
@@ -248,6 +293,9 @@ int main(int argc, char** argv) {
   fcl_disk::registerDiskFunctions(fcl_disk::DiskDistanceMethod::exact);
   registerScalar<float>("float");
   registerScalar<double>("double");
+  benchmark::RegisterBenchmark("fcl_manager_distance/default_callback", fclManagerDistance)
+      ->Arg(1000)
+      ->Arg(10000);
   for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
     for (int h : {2, 1, 0}) {  // h = 1e-6 first: the variant the targets name
       const std::string name = std::string("fcl_distance/gjk_") +
