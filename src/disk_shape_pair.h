@@ -34,10 +34,12 @@ inline bool areValidShapeLengths(std::initializer_list<double> lengths) {
 }
 
 /// intersect()'s early exit proves a pair apart only beyond this many touching
-/// tolerances: twice, so that the rounding of its bound (a few eps * scale,
-/// against the tolerance's 450) can never call apart a pair the full decision
-/// calls touching.
-constexpr double kApartMargin = 2.0;
+/// tolerances, so that it never calls apart a pair the full decision calls
+/// touching: the closed forms that decide through the disk-disk common point
+/// (a cylinder's cap, a cone's base) join disks up to about 2.2 of that pair's
+/// tolerances apart, whose scene is at most twice the shape pair's, and the
+/// bound's rounding is a few eps * scale against the tolerance's 450.
+constexpr double kApartMargin = 8.0;
 
 template <typename S>
 DiskShapeDistanceResult<S> nanDiskShapeResult() {
@@ -338,9 +340,8 @@ struct GenericDiskShapePair {
     const double rho = Traits::inflation(shape);
     const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
     const double touching = kShapeTouchingTolerance * scale;
-    // Apart by more than twice the touching tolerance (and the Target's
-    // supportMismatch): every decision below would say apart too, its
-    // distance being at least the bound less its rounding, a few eps * scale.
+    // Apart by more than kApartMargin touching tolerances (and the Target's
+    // supportMismatch): every decision below would say apart too.
     if (try_early_exit &&
         apartTowardsCentre(target, disk, rho, kApartMargin * touching + supportMismatchOf(target))) {
       return false;

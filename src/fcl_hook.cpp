@@ -144,28 +144,17 @@ constexpr double kNoNearerMargin = 1e-6;
 /// farther apart than `held`, a positive distance the result already holds (a
 /// broadphase manager's distance callback keeps one result over its candidate
 /// pairs, whose boxes only bound them), by more than kNoNearerMargin * (r1 +
-/// r2 + |w|): then its answer could not replace the one held. The certificate
-/// along the centres' line w = c2 - c1 (docs/exact_distance.md, section 2),
-/// with the disks' supports r_i |n_i x w| / (|n_i| |w|) taken from their
-/// normals alone, as the solvers take each disk. Invalid pairs are left to
-/// the solver, which answers them with NaN.
+/// r2 + |w|), w = c2 - c1, by the certificate along w (centreLineBound,
+/// src/pair_in_frame1.h): then its answer could not replace the one held.
+/// Invalid pairs are left to the solver, which answers them with NaN.
 template <typename S>
 bool diskPairNoNearerThan(S r1, const Transform3<S>& X_W1, S r2, const Transform3<S>& X_W2,
                           S held) {
   // A fresh result holds numeric_limits<S>::max(): nothing to beat, no check.
   if (!(held > 0 && held < std::numeric_limits<S>::max())) return false;
   if (!internal::checkDiskPair(r1, X_W1, r2, X_W2).valid) return false;
-  using Vec3 = Eigen::Vector3d;
-  const Vec3 w = (X_W2.translation().template cast<double>() -
-                  X_W1.translation().template cast<double>());
-  const Vec3 n1 = X_W1.linear().col(2).template cast<double>();
-  const Vec3 n2 = X_W2.linear().col(2).template cast<double>();
-  const double length = w.norm();
-  const double reach = double(r1) * std::sqrt(n1.cross(w).squaredNorm() / n1.squaredNorm()) +
-                       double(r2) * std::sqrt(n2.cross(w).squaredNorm() / n2.squaredNorm());
-  const double scale = double(r1) + double(r2) + length;
-  // |w| - reach / |w| > held + margin, times |w| (> 0 where it holds).
-  return length * length - reach > (double(held) + kNoNearerMargin * scale) * length;
+  const internal::CentreLineBound bound = internal::centreLineBound(r1, X_W1, r2, X_W2);
+  return bound.exceeds(double(held) + kNoNearerMargin * bound.scale);
 }
 
 /// Whether a signed answer may be minus this depth. FCL's entry, for the indep

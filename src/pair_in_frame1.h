@@ -251,6 +251,31 @@ inline std::optional<double> coplanarOverlapMidpoint(double D, double r1, double
 /// promise; the common point is then on both disks to this tolerance.
 constexpr double kTouchingTolerance = 1e-13;
 
+/// The certificate of section 2 along the centres' line w = c2 - c1 of a
+/// valid pair (checkDiskPair), in the world frame, before any frame change:
+/// d >= |w| - (r1 |n1 x w| / |n1| + r2 |n2 x w| / |n2|) / |w|, the disks'
+/// supports taken from their normals alone (n_i = R_i e_z), as the solvers
+/// take each disk. Kept as its parts so that callers compare it without a
+/// division: `length` = |w|, `reach` = the bracket, `scale` = r1 + r2 + |w|.
+struct CentreLineBound {
+  double length, reach, scale;
+  /// Whether the bound exceeds `distance`: |w|^2 - reach > distance |w|.
+  bool exceeds(double distance) const { return length * length - reach > distance * length; }
+};
+
+template <typename S>
+CentreLineBound centreLineBound(S r1, const fcl::Transform3<S>& X_W1, S r2,
+                                const fcl::Transform3<S>& X_W2) {
+  const Vec3 w =
+      X_W2.translation().template cast<double>() - X_W1.translation().template cast<double>();
+  const Vec3 n1 = X_W1.linear().col(2).template cast<double>();
+  const Vec3 n2 = X_W2.linear().col(2).template cast<double>();
+  const double length = w.norm();
+  const double reach = double(r1) * std::sqrt(n1.cross(w).squaredNorm() / n1.squaredNorm()) +
+                       double(r2) * std::sqrt(n2.cross(w).squaredNorm() / n2.squaredNorm());
+  return {length, reach, double(r1) + double(r2) + length};
+}
+
 /// The chord where disk 2 meets plane 1: X(tau) = X0 + tau T for |tau| <=
 /// half_length, T horizontal and unit to rounding (frame 1).
 struct ChordOnPlane1 {

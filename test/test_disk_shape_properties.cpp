@@ -138,7 +138,7 @@ fcl::Transform3<S> randomPose(Random& random, double spread) {
 /// * 1e-13 * scale (exactly, up to the rounding of the moved pose: the planes
 /// normal to q - p through p and q keep separating the sets) intersects below 1
 /// and not above, through diskShapeIntersect and fcl::collide's default request,
-/// on either side of the early exit's margin (twice the tolerance,
+/// on either side of the early exit's margin (8 tolerances,
 /// src/disk_shape_pair.h). The scale is that of the moved pose, taken low for
 /// the touching multiple and high (the oracle's bounding radius, at least the
 /// solver's) for the others.
@@ -152,7 +152,7 @@ void checkTouchingBand(S r, const fcl::Transform3<S>& X_WD,
   const double low_scale = double(r) + double((X_WD.translation() - touching_centre).norm());
   if (!(double(a.distance) > 1e-9 * low_scale)) return;
   fcl::CollisionObject<S> disk_object(std::make_shared<fcl_disk::Disk<S>>(r), X_WD);
-  for (const double multiple : {0.5, 1.5, 2.5, 4.0, 40.0}) {
+  for (const double multiple : {0.5, 1.5, 4.0, 10.0, 40.0}) {
     const bool touching = multiple < 1.0;
     const double scale = touching ? low_scale : low_scale + bounding_radius;
     fcl::Transform3<S> X_moved = X_WS;

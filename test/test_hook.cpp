@@ -18,6 +18,7 @@
 #include <thread>
 #include <vector>
 
+#include "disk_families.h"
 #include "test_random.h"
 
 namespace {
@@ -361,6 +362,51 @@ TEST(Hook, AHeldResultEndsAsTheNearestFreshAnswer) {
       const fcl::CollisionObjectd invalid(std::make_shared<fcl_disk::Diskd>(0.5), sheared);
       fcl::distance(objects[0].get(), &invalid, request, held);
       EXPECT_TRUE(std::isnan(held.min_distance));
+    }
+  }
+}
+
+// intersectDisks and the exact solver decide a pair the same way (the
+// solver's `intersecting` feature is the same common-point test), also in the
+// band around the touching tolerance where intersectDisks' centre-line early
+// exit (4 tolerances, src/disk_intersection.cpp) begins: each family's
+// separated pairs, disk 1's centre moved to the origin (so that the moves
+// below are not lost to the coordinates' rounding), disk 2 moved along p_W2 -
+// p_W1 to `multiple` tolerances (1e-13 * (r1 + r2 + |c2 - c1|)), through
+// intersectDisks and fcl::collide's default request.
+TEST(Hook, DiskPairsDecideTheTouchingBandAsTheSolver) {
+  for (const auto family : fcl_disk_families::allFamilies()) {
+    for (const auto& c : fcl_disk_families::makeFamily<double>(family, 300, 20240601)) {
+      Transform3d X_W1 = c.X_W1, X_W2 = c.X_W2;
+      X_W2.translation() -= X_W1.translation();
+      X_W1.translation().setZero();
+      const auto apart = fcl_disk::exactDiskDistance(c.r1, X_W1, c.r2, X_W2);
+      if (!(apart.distance > 1e-9 * (c.r1 + c.r2))) continue;
+      const Vec3 along = (apart.p_W2 - apart.p_W1) / apart.distance;
+      const double scale_apart = c.r1 + c.r2 + X_W2.translation().norm();
+      X_W2.translation() -= apart.distance * along;  // touching
+      // The nearest points are good to 1e-14 of the scene they were found in:
+      // not a tenth of a tolerance of the touching scene when that one is much
+      // smaller (a pair 1e6 of its radii apart).
+      if (scale_apart > 4.0 * (c.r1 + c.r2 + X_W2.translation().norm())) continue;
+      const double scale = c.r1 + c.r2 + X_W2.translation().norm();
+      const fcl::CollisionObjectd disk1(std::make_shared<fcl_disk::Diskd>(c.r1), X_W1);
+      for (const double multiple : {0.0, 0.5, 1.5, 2.5, 4.5, 8.0, 40.0}) {
+        Transform3d X_moved = X_W2;
+        X_moved.translation() += multiple * 1e-13 * scale * along;
+        const bool common = fcl_disk::exactDiskDistance(c.r1, X_W1, c.r2, X_moved).feature ==
+                            fcl_disk::DiskPairFeature::intersecting;
+        ASSERT_EQ(fcl_disk::intersectDisks(c.r1, X_W1, c.r2, X_moved), common)
+            << c.name << " moved to " << multiple << " touching tolerances";
+        const fcl::CollisionObjectd disk2(std::make_shared<fcl_disk::Diskd>(c.r2), X_moved);
+        fcl::CollisionResultd decision;
+        fcl::collide(&disk1, &disk2, fcl::CollisionRequestd(), decision);
+        ASSERT_EQ(decision.isCollision(), common)
+            << c.name << ", fcl::collide, moved to " << multiple << " touching tolerances";
+        if (multiple > 2.5) {
+          EXPECT_FALSE(common) << c.name << " moved to " << multiple;
+        }
+      }
     }
   }
 }
