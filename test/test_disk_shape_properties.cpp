@@ -158,7 +158,9 @@ void checkTouchingBand(S r, const fcl::Transform3<S>& X_WD,
     fcl::Transform3<S> X_moved = X_WS;
     X_moved.translation() -= (a.distance - S(multiple * 1e-13 * scale)) * along;
     ASSERT_EQ(diskShapeIntersectAny(r, X_WD, *shape, X_moved), touching)
-        << "moved to " << multiple << " touching tolerances, distance " << double(direct(r, X_WD, *shape, X_moved).distance) / (1e-13 * scale) << " of them\n" << what;
+        << "moved to " << multiple << " touching tolerances, distance "
+        << double(direct(r, X_WD, *shape, X_moved).distance) / (1e-13 * scale) << " of them\n"
+        << what;
     fcl::CollisionObject<S> shape_object(shape, X_moved);
     fcl::CollisionResult<S> decision;
     fcl::collide(&disk_object, &shape_object, fcl::CollisionRequest<S>(), decision);
