@@ -342,8 +342,8 @@ struct GenericDiskShapePair {
     const double touching = kShapeTouchingTolerance * scale;
     // Apart by more than kApartMargin touching tolerances (and the Target's
     // supportMismatch): every decision below would say apart too.
-    if (try_early_exit &&
-        apartTowardsCentre(target, disk, rho, kApartMargin * touching + supportMismatchOf(target))) {
+    if (try_early_exit && apartTowardsCentre(target, disk, rho,
+                                             kApartMargin * touching + supportMismatchOf(target))) {
       return false;
     }
     // The closed form distance() tries first decides here too, so that a pair
