@@ -51,12 +51,12 @@ DiskShapeDistanceResult<S> nanDiskShapeResult() {
   return result;
 }
 
-/// Whether the pair is valid (isValidDiskAndShapePose, include/fcl_disk/disk_pair.h),
-/// and whether both
-/// rotations are used as given (checkDiskPose with kAsGivenRotationTolerance:
-/// in double, within kOrthonormalInDouble; in float never), so that the disk's
-/// axes in the shape's frame are orthonormal to double rounding: one pass over
-/// both poses (checkTwoPoses).
+/// Whether the pair is valid (isValidDiskAndShapePose's rule,
+/// include/fcl_disk/disk_pair.h), and whether both rotations are used as given
+/// (checkDiskPose with kAsGivenRotationTolerance: in double, within
+/// kOrthonormalInDouble; in float never), so that the disk's axes in the
+/// shape's frame are orthonormal to double rounding: one pass over both poses
+/// (checkTwoPoses).
 struct DiskAndShapePoseCheck {
   bool valid;
   bool orthonormal;
