@@ -340,7 +340,7 @@ void benchHull(benchmark::State& state, int vertex_count, Query q) {
 }
 
 /// The hull counts of the disk_hulls_in_turn benchmarks.
-constexpr int kHullCounts[] = {1, 8, 64, 96, 128, 192};
+constexpr int kHullCounts[] = {1, 8, 64, 96, 128, 192, 1024};
 
 /// kPoolSize cases against `hull_count` Convex hulls of 40 random points on a
 /// sphere, case k against hull k % hull_count: the hulls queried in turn.

@@ -69,18 +69,24 @@ constexpr double kEdgeArcMargin = 1e-9;
 constexpr double kWellConditionedFace = 1e-6;
 
 /// A face of the polytope: where its vertex indices start in FCL's face list,
-/// how many, its outward unit normal (zero for a face of zero area), the
-/// plane's offset (normal . vertex), and a ball holding the polygon (centre the
-/// vertices' mean), whose distance bounds the polygon's from below.
+/// how many, its outward unit normal (zero for a face of zero area) and the
+/// length of its Newell normal (twice its area), the plane's offset (normal .
+/// vertex). Computed on the first query that needs them (a hull met once
+/// computes a few faces'): a ball holding the polygon (centre the vertices'
+/// mean), whose distance bounds the polygon's from below (ConvexTarget::ballOf),
+/// and its edges and triangle projection (ConvexTarget::detailOf).
 struct ConvexFace {
   std::size_t start;  ///< the face's first vertex index in FCL's face list
   int count;
-  std::size_t first_edge;  ///< its edges are ConvexGeometry::edges[first_edge, + count)
   Vec3 unit_normal;
   double offset;
-  Vec3 centre;
-  double radius;
-  bool well_conditioned;  ///< its normal is known to ~eps / kWellConditionedFace
+  double newell_length;
+  /// Its edges are ConvexGeometry::edges[first_edge, + count), its triangle
+  /// projection (count 3) ConvexGeometry::triangles[triangle]; -1 until computed.
+  mutable int first_edge = -1, triangle = -1;
+  mutable bool has_ball = false;
+  mutable Vec3 centre = Vec3::Zero();
+  mutable double radius = 0.0;
 };
 
 /// An edge of the hull's faces, listed once: its vertices and, where exactly
@@ -117,9 +123,11 @@ struct ConvexEdge {
 struct ConvexGeometry {
   bool valid = false;  ///< ConvexTraits::valid's verdict on the lists
   std::vector<ConvexFace> faces;
-  std::vector<ConvexEdge> edges;  ///< each face's, in its order
-  /// Per face: its triangle projection when it is a triangle (most hulls).
-  std::vector<TriangleProjection> triangles;
+  /// The faces' edges and triangle projections, appended as queries reach
+  /// them (ConvexTarget::detailOf); their capacity, reserved with the
+  /// geometry, holds every face's, so references into them stay valid.
+  mutable std::vector<ConvexEdge> edges;
+  mutable std::vector<TriangleProjection> triangles;
   /// The face planes again, one column per coordinate (n_x, n_y, n_z, offset),
   /// so that the height scan of every projection runs vectorised.
   Eigen::Matrix<double, Eigen::Dynamic, 4> planes;
@@ -150,9 +158,10 @@ struct ConvexGeometry {
   /// vertex): the geometry is this thread's own (ConvexGeometryCache), so its
   /// buffers need no thread_local lookup per scan.
   mutable Eigen::VectorXd heights, along;
-  /// The largest spread of a face's vertices along its normal: 0 for planar
-  /// faces up to rounding; ~1e-7 of the size for quadrilaterals whose
-  /// vertices were rounded to float, or data planar only to its precision.
+  /// The largest spread of a face's vertices along its normal: 0 for
+  /// triangles (their vertices define the plane) and planar polygons up to
+  /// rounding; ~1e-7 of the size for quadrilaterals whose vertices were
+  /// rounded to float, or data planar only to its precision.
   double face_thickness = 0.0;
   /// The hull's edges with their faces, for the penetration depth's candidates
   /// only: built on the first contact query of the hull on this thread.
@@ -177,8 +186,8 @@ struct ConvexGeometry {
 /// How many hulls, and how much memory for them, each thread keeps the
 /// geometry of (ConvexGeometryCache): a planner's scene holds many hulls and a
 /// broadphase queries those near a disk in turn, and a hull whose geometry was
-/// dropped costs far more than its query (40 vertices, 76 faces: ~86k
-/// instructions against ~3k; docs/disk_shape_distance.md, section 4). 128
+/// dropped costs several queries (40 vertices, 76 faces: ~26k instructions
+/// against ~4k; docs/disk_shape_distance.md, section 4). 128
 /// hulls of 40 vertices hold ~6 MB; hulls of 100 vertices (~0.17 MB each) stop
 /// at the budget at ~96, of 1000 vertices (~0.6 MB) at ~27.
 constexpr std::size_t kMaxCachedHulls = 128;
@@ -260,7 +269,6 @@ struct ConvexTarget {
   const fcl::Convex<S>* convex;
   const int* list;                   ///< FCL's face list
   const std::vector<ConvexFace>& faces;
-  const std::vector<TriangleProjection>& triangles;
   const Eigen::Matrix<double, Eigen::Dynamic, 4>& planes;
   const Eigen::Matrix<double, Eigen::Dynamic, 3>& points;
   const ConvexGeometry& geometry;
@@ -272,7 +280,6 @@ struct ConvexTarget {
       : convex(&shape),
         list(shape.getFaces().data()),
         faces(geometry.faces),
-        triangles(geometry.triangles),
         planes(geometry.planes),
         points(geometry.points),
         geometry(geometry),
@@ -361,7 +368,9 @@ struct ConvexTarget {
     ConvexGeometry geometry;
     geometry.valid = listsAreValid(shape);
     if (!geometry.valid) return geometry;
-    const auto vertex = [&](int index) { return shape.getVertices()[index].template cast<double>(); };
+    // The vertex array read once, not through the shape at every read.
+    const fcl::Vector3<S>* const vertices = shape.getVertices().data();
+    const auto vertex = [vertices](int index) { return vertices[index].template cast<double>(); };
     geometry.points.resize(Eigen::Index(shape.getVertices().size()), 3);
     for (std::size_t i = 0; i < shape.getVertices().size(); ++i) {
       const Vec3 v = vertex(int(i));
@@ -375,7 +384,7 @@ struct ConvexTarget {
     bool& flat = geometry.flat;
     faces.reserve(shape.getFaceCount());
     geometry.edges.reserve(list.size() - std::size_t(shape.getFaceCount()));  // one per index
-    geometry.triangles.resize(shape.getFaceCount());
+    geometry.triangles.reserve(shape.getFaceCount());
     geometry.planes.resize(shape.getFaceCount(), 4);
     std::size_t at = 0;
     double largest_area = -1.0;
@@ -388,7 +397,6 @@ struct ConvexTarget {
       if (count == 3) {
         const Vec3 a = vertex(index[0]);
         normal = (vertex(index[1]) - a).cross(vertex(index[2]) - a);
-        geometry.triangles[f] = TriangleProjection(a, vertex(index[1]), vertex(index[2]));
       } else {
         normal = vertex(index[count - 1]).cross(vertex(index[0]));
         for (int i = 0; i + 1 < count; ++i) normal += vertex(index[i]).cross(vertex(index[i + 1]));
@@ -400,30 +408,19 @@ struct ConvexTarget {
       const Vec3 unit = area > 0.0 ? Vec3(normal / area) : Vec3::Zero();
       if (area > 0.0) {
         if (first_normal.squaredNorm() == 0.0) first_normal = unit;
-        flat &= first_normal.cross(unit).norm() <= kParallelFaceSine;
+        flat &= first_normal.cross(unit).squaredNorm() <= kParallelFaceSine * kParallelFaceSine;
       }
-      Vec3 centre = Vec3::Zero();
-      for (int i = 0; i < count; ++i) centre += vertex(index[i]);
-      centre /= count;
-      double radius = 0.0, lowest = 0.0, highest = 0.0;
-      for (int i = 0; i < count; ++i) {
-        radius = std::max(radius, safeNorm(vertex(index[i]) - centre));
-        const double height = unit.dot(vertex(index[i]) - centre);
-        lowest = std::min(lowest, height), highest = std::max(highest, height);
+      const double offset = unit.dot(vertex(index[0]));
+      if (count > 3) {  // a triangle lies in its plane: its vertices define it
+        double lowest = 0.0, highest = 0.0;
+        for (int i = 1; i < count; ++i) {
+          const double height = unit.dot(vertex(index[i])) - offset;
+          lowest = std::min(lowest, height), highest = std::max(highest, height);
+        }
+        geometry.face_thickness = std::max(geometry.face_thickness, highest - lowest);
       }
-      geometry.face_thickness = std::max(geometry.face_thickness, highest - lowest);
-      faces.push_back(ConvexFace{at + 1, count, geometry.edges.size(), unit,
-                                 unit.dot(vertex(index[0])), centre, radius,
-                                 area > 0.0 && area >= kWellConditionedFace * 4.0 * radius * radius});
-      for (int i = 0; i < count; ++i) {
-        const Vec3 from = vertex(index[i]), to = vertex(index[(i + 1) % count]);
-        const Vec3 along = to - from, inwards = unit.cross(along);
-        const double length_squared = along.squaredNorm();
-        geometry.edges.push_back(ConvexEdge{from, to, along,
-                                            length_squared > 0.0 ? 1.0 / length_squared : 0.0,
-                                            inwards, inwards.dot(from)});
-      }
-      geometry.planes.row(f) << unit.transpose(), faces.back().offset;
+      faces.push_back(ConvexFace{at + 1, count, unit, offset, area});
+      geometry.planes.row(f) << unit.transpose(), offset;
       at += count + 1;
     }
     if (faces.size() >= kClimbingFaceCount) buildFaceGraph(list, &geometry);
@@ -486,7 +483,7 @@ struct ConvexTarget {
   static std::vector<std::pair<std::uint64_t, int>> sortedFaceEdges(
       const std::vector<int>& list, const ConvexGeometry& geometry) {
     std::vector<std::pair<std::uint64_t, int>> edges;
-    edges.reserve(geometry.edges.size());
+    edges.reserve(geometry.edges.capacity());
     for (std::size_t f = 0; f < geometry.faces.size(); ++f) {
       const int* index = &list[geometry.faces[f].start];
       const int count = geometry.faces[f].count;
@@ -534,8 +531,34 @@ struct ConvexTarget {
     }
   }
 
+  /// The face's ball (ConvexFace), computed on first use: centre the
+  /// vertices' mean, radius the farthest vertex's distance.
+  static const ConvexFace& ballOf(const ConvexGeometry& geometry, const int* list,
+                                  const ConvexFace& face) {
+    if (face.has_ball) return face;
+    const auto vertex = [&](int i) {
+      return geometry.points.row(list[face.start + i]).transpose();
+    };
+    Vec3 centre = Vec3::Zero();
+    for (int i = 0; i < face.count; ++i) centre += vertex(i);
+    centre /= face.count;
+    double radius = 0.0;
+    for (int i = 0; i < face.count; ++i) radius = std::max(radius, safeNorm(vertex(i) - centre));
+    face.centre = centre, face.radius = radius, face.has_ball = true;
+    return face;
+  }
+
+  /// Whether the face's normal is known to ~eps / kWellConditionedFace: its
+  /// Newell normal at least kWellConditionedFace times its size squared.
+  static bool wellConditioned(const ConvexGeometry& geometry, const int* list,
+                              const ConvexFace& face) {
+    const double radius = ballOf(geometry, list, face).radius;
+    return face.newell_length > 0.0 &&
+           face.newell_length >= kWellConditionedFace * 4.0 * radius * radius;
+  }
+
   /// An edge's arc of directions from its two faces (ConvexHullEdge).
-  static void setEdgeArc(const ConvexGeometry& geometry, ConvexHullEdge* edge) {
+  static void setEdgeArc(const ConvexGeometry& geometry, const int* list, ConvexHullEdge* edge) {
     const ConvexFace& face_a = geometry.faces[std::size_t(edge->face_a)];
     const ConvexFace& face_b = geometry.faces[std::size_t(edge->face_b)];
     edge->n1 = face_a.unit_normal, edge->n2 = face_b.unit_normal;
@@ -543,12 +566,15 @@ struct ConvexTarget {
     const Vec3 m_raw = edge->n2 - edge->cos_alpha * edge->n1;
     edge->sin_alpha = m_raw.norm();
     if (edge->sin_alpha > 0.0) edge->m = m_raw / edge->sin_alpha;
-    const double smallest_face = std::min(face_a.radius, face_b.radius);
+    const double smallest_face =
+        std::min(ballOf(geometry, list, face_a).radius, ballOf(geometry, list, face_b).radius);
     if (smallest_face > 0.0) {
       edge->widening = kEdgeArcMargin + 2.0 * geometry.face_thickness / smallest_face;
     }
     constexpr double kBackToBack = 1e-6;  // 1 + cos alpha: the arc is nearly a half circle
-    edge->prunable = face_a.well_conditioned && face_b.well_conditioned && smallest_face > 0.0 &&
+    edge->prunable = wellConditioned(geometry, list, face_a) &&
+                     wellConditioned(geometry, list, face_b) &&
+                     smallest_face > 0.0 &&
                      edge->cos_alpha > kBackToBack - 1.0;
   }
 
@@ -567,7 +593,7 @@ struct ConvexTarget {
       ConvexHullEdge edge{int(keys[i].first >> 32), int(keys[i].first & 0xffffffffu)};
       if (end - i == 2 && keys[i].second != keys[i + 1].second) {
         edge.face_a = keys[i].second, edge.face_b = keys[i + 1].second;
-        setEdgeArc(geometry, &edge);
+        setEdgeArc(geometry, shape.getFaces().data(), &edge);
       }
       edges.push_back(edge);
       i = end;
@@ -609,8 +635,31 @@ struct ConvexTarget {
 
   Vec3 vertex(int index) const { return convex->getVertices()[index].template cast<double>(); }
 
+  /// The face's edges (and, for a triangle, its projection), computed on
+  /// first use: each edge from vertex i to the next, with its inward normal
+  /// in the face's plane (ConvexEdge).
+  const ConvexFace& detailOf(const ConvexFace& face) const {
+    if (face.first_edge >= 0) return face;
+    const int* index = &list[face.start];
+    const int count = face.count;
+    face.first_edge = int(geometry.edges.size());
+    for (int i = 0; i < count; ++i) {
+      const Vec3 from = vertex(index[i]), to = vertex(index[i + 1 < count ? i + 1 : 0]);
+      const Vec3 along = to - from, inwards = face.unit_normal.cross(along);
+      const double length_squared = along.squaredNorm();
+      geometry.edges.push_back(ConvexEdge{from, to, along,
+                                          length_squared > 0.0 ? 1.0 / length_squared : 0.0,
+                                          inwards, inwards.dot(from)});
+    }
+    if (count == 3) {
+      face.triangle = int(geometry.triangles.size());
+      geometry.triangles.emplace_back(vertex(index[0]), vertex(index[1]), vertex(index[2]));
+    }
+    return face;
+  }
+
   Projection ontoFace(const Vec3& y, const ConvexFace& face) const {
-    if (face.count == 3) return triangles[&face - faces.data()].project(y);
+    if (face.count == 3) return geometry.triangles[std::size_t(detailOf(face).triangle)].project(y);
     return projectOntoPolygon(y, face.count, [&](int i) { return vertex(list[face.start + i]); },
                               face.unit_normal);
   }
@@ -632,7 +681,7 @@ struct ConvexTarget {
   /// that point is an outward normal of the polygon. A face of zero area is
   /// its edges.
   NearestOnFace nearestOnFace(const Vec3& y, const ConvexFace& face) const {
-    const ConvexEdge* edge = &geometry.edges[face.first_edge];
+    const ConvexEdge* edge = &geometry.edges[std::size_t(detailOf(face).first_edge)];
     const bool has_area = face.unit_normal.squaredNorm() > 0.0;
     bool inside = has_area;
     for (int i = 0; i < face.count && inside; ++i) {
@@ -674,7 +723,7 @@ struct ConvexTarget {
     auto [low, high] = *chord;
     const Vec3 direction = along.x() * disk.u + along.y() * disk.v;  // the chord's, in 3-D
     for (int i = 0; i < face.count; ++i) {  // clip to each edge's inner side
-      const ConvexEdge& edge = geometry.edges[face.first_edge + i];
+      const ConvexEdge& edge = geometry.edges[std::size_t(detailOf(face).first_edge + i)];
       const double start = edge.inwards.dot(m) - edge.inwards_offset;
       const double rate = edge.inwards.dot(direction);
       if (rate == 0.0) {
@@ -732,8 +781,9 @@ struct ConvexTarget {
       if (int(f) == farthest) continue;
       const double height = height_of[f];
       if (!(height > 0.0) || !(height < best_distance)) continue;
-      const double reach = best_distance + faces[f].radius;
-      if (!((y - faces[f].centre).squaredNorm() < reach * reach)) continue;
+      const ConvexFace& ball = ballOf(geometry, list, faces[f]);
+      const double reach = best_distance + ball.radius;
+      if (!((y - ball.centre).squaredNorm() < reach * reach)) continue;
       const auto on_face = onto_face(faces[f]);
       const double distance = (y - on_face.q).norm();
       if (distance < best_distance) best = on_face, best_distance = distance, best_face = int(f);
@@ -949,7 +999,8 @@ struct ConvexTraits {
           next = disk.point(disk.nearest(at_boundary.q));
           return certified((at_boundary.q - next).norm(), next, at_boundary.q);
         }
-        const ConvexEdge& on = hull.geometry.edges[face.first_edge + at_boundary.index];
+        const ConvexEdge& on =
+            hull.geometry.edges[std::size_t(hull.detailOf(face).first_edge + at_boundary.index)];
         const SegmentToDisk edge = segmentToDisk(disk, on.from, on.to);
         next = edge.p_disk;
         const LeafToDisk by_edge =
