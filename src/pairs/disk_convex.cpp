@@ -186,7 +186,7 @@ struct ConvexGeometry {
 /// How many hulls, and how much memory for them, each thread keeps the
 /// geometry of (ConvexGeometryCache): a planner's scene holds many hulls and a
 /// broadphase queries those near a disk in turn, and a hull whose geometry was
-/// dropped costs several queries (40 vertices, 76 faces: ~26k instructions
+/// dropped costs several queries (40 vertices, 76 faces: ~20k instructions
 /// against ~4k; docs/disk_shape_distance.md, section 4). 128
 /// hulls of 40 vertices hold ~6 MB; hulls of 100 vertices (~0.17 MB each) stop
 /// at the budget at ~96, of 1000 vertices (~0.6 MB) at ~27.
@@ -382,7 +382,7 @@ struct ConvexTarget {
     std::vector<ConvexFace>& faces = geometry.faces;
     int& largest_face = geometry.largest_face;
     bool& flat = geometry.flat;
-    faces.reserve(shape.getFaceCount());
+    faces.resize(std::size_t(shape.getFaceCount()));
     geometry.edges.reserve(list.size() - std::size_t(shape.getFaceCount()));  // one per index
     geometry.triangles.reserve(shape.getFaceCount());
     geometry.planes.resize(shape.getFaceCount(), 4);
@@ -406,9 +406,9 @@ struct ConvexTarget {
       const double area = safeNorm(normal);
       if (area > largest_area) largest_area = area, largest_face = f;
       const Vec3 unit = area > 0.0 ? Vec3(normal / area) : Vec3::Zero();
-      if (area > 0.0) {
+      if (flat && area > 0.0) {  // until a face is not parallel to the first
         if (first_normal.squaredNorm() == 0.0) first_normal = unit;
-        flat &= first_normal.cross(unit).squaredNorm() <= kParallelFaceSine * kParallelFaceSine;
+        flat = first_normal.cross(unit).squaredNorm() <= kParallelFaceSine * kParallelFaceSine;
       }
       const double offset = unit.dot(vertex(index[0]));
       if (count > 3) {  // a triangle lies in its plane: its vertices define it
@@ -419,8 +419,11 @@ struct ConvexTarget {
         }
         geometry.face_thickness = std::max(geometry.face_thickness, highest - lowest);
       }
-      faces.push_back(ConvexFace{at + 1, count, unit, offset, area});
-      geometry.planes.row(f) << unit.transpose(), offset;
+      ConvexFace& face = faces[std::size_t(f)];
+      face.start = at + 1, face.count = count;
+      face.unit_normal = unit, face.offset = offset, face.newell_length = area;
+      geometry.planes(f, 0) = unit.x(), geometry.planes(f, 1) = unit.y();
+      geometry.planes(f, 2) = unit.z(), geometry.planes(f, 3) = offset;
       at += count + 1;
     }
     if (faces.size() >= kClimbingFaceCount) buildFaceGraph(list, &geometry);
