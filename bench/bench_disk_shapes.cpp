@@ -55,6 +55,8 @@
 // 40 random points on the sphere of radius 0.45, the pool's case k against
 // hull k % H: a scene's hulls queried one after another, as a broadphase
 // visits them (each thread keeps the geometry of up to 128 hulls).
+// disk_large_hulls_in_turn/<N>/<variant>/double: the same with 256 hulls of N
+// random points, more than a thread keeps.
 //
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_shapes --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
@@ -339,22 +341,37 @@ void benchHull(benchmark::State& state, int vertex_count, Query q) {
   cycleThroughPool<double>(state, hullPool(vertex_count), q);
 }
 
-/// The hull counts of the disk_hulls_in_turn benchmarks.
+/// The hull counts of the disk_hulls_in_turn benchmarks (hulls of 40
+/// vertices), and the vertex counts of the larger hulls queried kLargeHullsInTurn
+/// at a time (more than a thread keeps).
 constexpr int kHullCounts[] = {1, 8, 64, 96, 128, 192, 1024};
+constexpr int kLargeHullSizes[] = {100, 200};
+constexpr int kLargeHullsInTurn = 256;
 
-/// kPoolSize cases against `hull_count` Convex hulls of 40 random points on a
-/// sphere, case k against hull k % hull_count: the hulls queried in turn.
+/// kPoolSize cases against `hull_count` Convex hulls of `vertex_count` random
+/// points on a sphere, case k against hull k % hull_count: the hulls queried in
+/// turn.
+std::unique_ptr<Pool<double>> inTurnCases(int hull_count, int vertex_count) {
+  fcl_disk_test::Random random(kSeed + 7919 * std::uint64_t(hull_count) +
+                               104729 * std::uint64_t(vertex_count == 40 ? 0 : vertex_count));
+  std::vector<std::shared_ptr<fcl::ShapeBase<double>>> hulls;
+  for (int h = 0; h < hull_count; ++h) {
+    hulls.push_back(dsc::makeShape<double>(dsc::detail::sphereHull(vertex_count, random)));
+  }
+  return hullCases(hulls, random);
+}
+
 const Pool<double>& inTurnPool(int hull_count) {
   static std::vector<std::unique_ptr<Pool<double>>> pools(std::size(kHullCounts));
   auto& pool = pools[slotOf(kHullCounts, hull_count)];
-  if (!pool) {
-    fcl_disk_test::Random random(kSeed + 7919 * std::uint64_t(hull_count));
-    std::vector<std::shared_ptr<fcl::ShapeBase<double>>> hulls;
-    for (int h = 0; h < hull_count; ++h) {
-      hulls.push_back(dsc::makeShape<double>(dsc::detail::sphereHull(40, random)));
-    }
-    pool = hullCases(hulls, random);
-  }
+  if (!pool) pool = inTurnCases(hull_count, 40);
+  return *pool;
+}
+
+const Pool<double>& largeHullsInTurnPool(int vertex_count) {
+  static std::vector<std::unique_ptr<Pool<double>>> pools(std::size(kLargeHullSizes));
+  auto& pool = pools[slotOf(kLargeHullSizes, vertex_count)];
+  if (!pool) pool = inTurnCases(kLargeHullsInTurn, vertex_count);
   return *pool;
 }
 
@@ -417,6 +434,16 @@ void registerHulls() {
                                variantName(q) + "/double";
       benchmark::RegisterBenchmark(name.c_str(), [hull_count, q](benchmark::State& st) {
         cycleThroughPool<double>(st, inTurnPool(hull_count), q);
+      });
+    }
+  }
+  for (const int vertex_count : kLargeHullSizes) {
+    for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
+                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {
+      const std::string name = "disk_large_hulls_in_turn/" + std::to_string(vertex_count) + "/" +
+                               variantName(q) + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [vertex_count, q](benchmark::State& st) {
+        cycleThroughPool<double>(st, largeHullsInTurnPool(vertex_count), q);
       });
     }
   }

@@ -474,8 +474,6 @@ struct ConvexTarget {
     }
   }
 
-  /// ConvexGeometry's face graph (faces sharing an edge: the faces' edges
-  /// sorted by their vertex pair, as 64-bit keys) and the climb's start faces.
   /// Two 32-bit indices as one sortable 64-bit key.
   static std::uint64_t pairKey(int high, int low) {
     return std::uint64_t(std::uint32_t(high)) << 32 | std::uint32_t(low);
@@ -499,33 +497,80 @@ struct ConvexTarget {
     return edges;
   }
 
+  /// ConvexGeometry's face graph (faces sharing an edge, each face's list in
+  /// ascending order) and the climb's start faces. Linear in the edges, since
+  /// a hull not kept computes it on every query (docs/performance.md, "Hulls
+  /// queried in turn").
   static void buildFaceGraph(const std::vector<int>& list, ConvexGeometry* geometry) {
     const std::vector<ConvexFace>& faces = geometry->faces;
-    const std::vector<std::pair<std::uint64_t, int>> edges = sortedFaceEdges(list, *geometry);
-    std::vector<std::uint64_t> pairs;  // (face, neighbour), both ways
-    for (std::size_t i = 0; i < edges.size();) {
-      std::size_t end = i + 1;
-      while (end < edges.size() && edges[end].first == edges[i].first) ++end;
-      for (std::size_t a = i; a < end; ++a) {
-        for (std::size_t b = i; b < end; ++b) {
-          if (edges[a].second != edges[b].second) {
-            pairs.push_back(pairKey(edges[a].second, edges[b].second));
+    struct EdgeUse {
+      std::uint64_t key;  ///< pairKey(smaller vertex, larger vertex)
+      int face;
+    };
+    std::vector<EdgeUse> uses;
+    for (std::size_t f = 0; f < faces.size(); ++f) {
+      const int* index = &list[faces[f].start];
+      const int count = faces[f].count;
+      for (int i = 0; i < count; ++i) {
+        const int from = index[i], to = index[i + 1 < count ? i + 1 : 0];
+        uses.push_back({pairKey(std::min(from, to), std::max(from, to)), int(f)});
+      }
+    }
+    // The uses grouped by a hash of their edge (a counting sort into at least
+    // twice as many slots as uses, linear in the edges): the faces sharing an
+    // edge are in one slot, with few other edges there.
+    int bits = 1;
+    while ((std::size_t(1) << bits) < 2 * uses.size()) ++bits;
+    const auto slot_of = [bits](std::uint64_t key) {
+      return std::size_t((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
+    };
+    std::vector<int> slot_start((std::size_t(1) << bits) + 1, 0);
+    for (const EdgeUse& use : uses) ++slot_start[slot_of(use.key) + 1];
+    for (std::size_t k = 1; k < slot_start.size(); ++k) slot_start[k] += slot_start[k - 1];
+    std::vector<EdgeUse> grouped(uses.size());
+    {
+      std::vector<int> next(slot_start.begin(), slot_start.end() - 1);
+      for (const EdgeUse& use : uses) grouped[std::size_t(next[slot_of(use.key)]++)] = use;
+    }
+    // (face, neighbour) for every two faces sharing an edge, both ways.
+    std::vector<std::pair<int, int>> pairs;
+    for (std::size_t k = 0; k + 1 < slot_start.size(); ++k) {
+      for (int a = slot_start[k]; a < slot_start[k + 1]; ++a) {
+        for (int b = slot_start[k]; b < slot_start[k + 1]; ++b) {
+          const EdgeUse &use_a = grouped[std::size_t(a)], &use_b = grouped[std::size_t(b)];
+          if (use_a.key == use_b.key && use_a.face != use_b.face) {
+            pairs.emplace_back(use_a.face, use_b.face);
           }
         }
       }
-      i = end;
     }
-    std::sort(pairs.begin(), pairs.end());
-    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-    geometry->neighbour_start.assign(faces.size() + 1, 0);
-    geometry->face_neighbours.resize(pairs.size());
-    for (std::size_t k = 0; k < pairs.size(); ++k) {
-      ++geometry->neighbour_start[(pairs[k] >> 32) + 1];
-      geometry->face_neighbours[k] = int(pairs[k] & 0xffffffffu);
+    // Placed by face, then each face's list sorted and made unique (the climb
+    // reads it in that order).
+    std::vector<int>& start = geometry->neighbour_start;
+    std::vector<int>& neighbours = geometry->face_neighbours;
+    start.assign(faces.size() + 1, 0);
+    for (const auto& pair : pairs) ++start[std::size_t(pair.first) + 1];
+    for (std::size_t f = 0; f < faces.size(); ++f) start[f + 1] += start[f];
+    neighbours.resize(pairs.size());
+    {
+      std::vector<int> next(start.begin(), start.end() - 1);
+      for (const auto& [face, neighbour] : pairs) {
+        neighbours[std::size_t(next[std::size_t(face)]++)] = neighbour;
+      }
     }
+    int kept = 0;
     for (std::size_t f = 0; f < faces.size(); ++f) {
-      geometry->neighbour_start[f + 1] += geometry->neighbour_start[f];
+      const int begin = start[f], end = start[f + 1];
+      std::sort(neighbours.begin() + begin, neighbours.begin() + end);
+      start[f] = kept;
+      for (int k = begin; k < end; ++k) {
+        if (k == begin || neighbours[std::size_t(k)] != neighbours[std::size_t(k) - 1]) {
+          neighbours[std::size_t(kept++)] = neighbours[std::size_t(k)];
+        }
+      }
     }
+    start[faces.size()] = kept;
+    neighbours.resize(std::size_t(kept));
     for (int axis = 0; axis < 6; ++axis) {
       const double sign = axis < 3 ? 1.0 : -1.0;
       Eigen::Index extreme = 0;
