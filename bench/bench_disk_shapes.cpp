@@ -417,6 +417,22 @@ void benchHullContacts(benchmark::State& state, int vertex_count, bool flat_cyli
   state.counters["mean_depth"] = depths / double(std::max<std::int64_t>(1, state.iterations()));
 }
 
+/// `prefix`<n>/<variant>/double for each n of `counts`: the disk and the flat
+/// cylinder (libccd) through pool_of(n)'s hulls in turn.
+template <std::size_t N>
+void registerInTurn(const char* prefix, const int (&counts)[N],
+                    const Pool<double>& (*pool_of)(int)) {
+  for (const int n : counts) {
+    for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
+                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {
+      const std::string name = prefix + std::to_string(n) + "/" + variantName(q) + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [n, q, pool_of](benchmark::State& st) {
+        cycleThroughPool<double>(st, pool_of(n), q);
+      });
+    }
+  }
+}
+
 void registerHulls() {
   for (const int vertex_count : kHullSizes) {
     for (const bool flat_cylinder : {false, true}) {
@@ -427,26 +443,8 @@ void registerHulls() {
       });
     }
   }
-  for (const int hull_count : kHullCounts) {
-    for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
-                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {
-      const std::string name = "disk_hulls_in_turn/" + std::to_string(hull_count) + "/" +
-                               variantName(q) + "/double";
-      benchmark::RegisterBenchmark(name.c_str(), [hull_count, q](benchmark::State& st) {
-        cycleThroughPool<double>(st, inTurnPool(hull_count), q);
-      });
-    }
-  }
-  for (const int vertex_count : kLargeHullSizes) {
-    for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
-                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {
-      const std::string name = "disk_large_hulls_in_turn/" + std::to_string(vertex_count) + "/" +
-                               variantName(q) + "/double";
-      benchmark::RegisterBenchmark(name.c_str(), [vertex_count, q](benchmark::State& st) {
-        cycleThroughPool<double>(st, largeHullsInTurnPool(vertex_count), q);
-      });
-    }
-  }
+  registerInTurn("disk_hulls_in_turn/", kHullCounts, inTurnPool);
+  registerInTurn("disk_large_hulls_in_turn/", kLargeHullSizes, largeHullsInTurnPool);
   for (const int vertex_count : kHullSizes) {
     for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
                            Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD},
