@@ -508,6 +508,7 @@ struct ConvexTarget {
       int face;
     };
     std::vector<EdgeUse> uses;
+    uses.reserve(list.size() - faces.size());  // one per index
     for (std::size_t f = 0; f < faces.size(); ++f) {
       const int* index = &list[faces[f].start];
       const int count = faces[f].count;
@@ -534,6 +535,7 @@ struct ConvexTarget {
     }
     // (face, neighbour) for every two faces sharing an edge, both ways.
     std::vector<std::pair<int, int>> pairs;
+    pairs.reserve(uses.size());  // two faces an edge: one pair per use
     for (std::size_t k = 0; k + 1 < slot_start.size(); ++k) {
       for (int a = slot_start[k]; a < slot_start[k + 1]; ++a) {
         for (int b = slot_start[k]; b < slot_start[k + 1]; ++b) {
