@@ -352,8 +352,8 @@ constexpr int kLargeHullsInTurn = 256;
 /// points on a sphere, case k against hull k % hull_count: the hulls queried in
 /// turn.
 std::unique_ptr<Pool<double>> inTurnCases(int hull_count, int vertex_count) {
-  // 40-vertex pools keep the seeds they had before larger hulls were added, so
-  // that their figures in docs/performance.md stay comparable.
+  // 40-vertex pools are seeded by their hull count alone, the pools of
+  // docs/performance.md's hulls-in-turn table.
   fcl_disk_test::Random random(kSeed + 7919 * std::uint64_t(hull_count) +
                                104729 * std::uint64_t(vertex_count == 40 ? 0 : vertex_count));
   std::vector<std::shared_ptr<fcl::ShapeBase<double>>> hulls;
