@@ -54,9 +54,9 @@
 // Hulls in turn: disk_hulls_in_turn/<H>/<variant>/double, H Convex hulls of
 // 40 random points on the sphere of radius 0.45, the pool's case k against
 // hull k % H: a scene's hulls queried one after another, as a broadphase
-// visits them (each thread keeps the geometry of up to 128 hulls).
-// disk_large_hulls_in_turn/<N>/<variant>/double: the same with 256 hulls of N
-// random points, more than a thread keeps.
+// visits them (each thread keeps the geometry of up to 1024 hulls, within
+// 48 MiB). disk_large_hulls_in_turn/<N>/<variant>/double: the same with 1024
+// hulls of N random points, more than a thread keeps.
 //
 // Run with repetitions and read the median aggregates, e.g.
 //   bench_disk_shapes --benchmark_repetitions=5 --benchmark_display_aggregates_only=true
@@ -346,7 +346,7 @@ void benchHull(benchmark::State& state, int vertex_count, Query q) {
 /// at a time (more than a thread keeps).
 constexpr int kHullCounts[] = {1, 8, 64, 96, 128, 192, 1024};
 constexpr int kLargeHullSizes[] = {100, 200};
-constexpr int kLargeHullsInTurn = 256;
+constexpr int kLargeHullsInTurn = 1024;
 
 /// kPoolSize cases against `hull_count` Convex hulls of `vertex_count` random
 /// points on a sphere, case k against hull k % hull_count: the hulls queried in

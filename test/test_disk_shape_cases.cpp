@@ -927,16 +927,16 @@ std::shared_ptr<fcl::Convexd> convexOf(const HullLists& lists,
 }
 
 // Each thread keeps the geometry of the hulls it queries (ConvexGeometryCache):
-// queried in turn, 160 hulls (more than the cache holds; small and large ones)
-// give bit for bit the answers each gives queried alone.
+// queried in turn, 1100 hulls (more than the cache's 1024 slots; small and
+// large ones) give bit for bit the answers each gives queried alone.
 TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
-  constexpr int kHulls = 160, kPoses = 12;
+  constexpr int kHulls = 1100, kPoses = 3;
   std::vector<std::shared_ptr<fcl::Convexd>> hulls;
   std::vector<std::shared_ptr<std::vector<Vector3d>>> vertex_lists(kHulls);
   for (int h = 0; h < kHulls; ++h) {
-    const double size = 0.5 + 0.01 * h;
-    const int per_ring = h % 4 == 0 ? 16 : 5 + h % 7;  // 130 vertices, or 32..68
-    hulls.push_back(convexOf(ringHull(h % 4 == 0 ? 8 : 6, per_ring,
+    const double size = 0.5 + 0.001 * h;
+    const int per_ring = h % 16 == 0 ? 16 : 5 + h % 7;  // 130 vertices, or 32..68
+    hulls.push_back(convexOf(ringHull(h % 16 == 0 ? 8 : 6, per_ring,
                                       Vector3d(size, 0.8 * size, 0.6 * size)),
                              &vertex_lists[h]));
   }
@@ -955,7 +955,7 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
   for (int h = 0; h < kHulls; ++h) {
     for (int pose = 0; pose < kPoses; ++pose) alone.push_back(query(*hulls[h], pose));
   }
-  for (int round = 0; round < 3; ++round) {
+  for (int round = 0; round < 2; ++round) {
     for (int pose = 0; pose < kPoses; ++pose) {
       for (int h = 0; h < kHulls; ++h) {
         const auto in_turn = query(*hulls[h], pose);
@@ -1003,8 +1003,8 @@ TEST(DiskShapeCases, ConvexHullChangedInPlaceBeyondTheCacheIsRecomputed) {
   const auto query = [&](const fcl::Convexd& convex, const Vector3d& centre) {
     return fcl_disk::diskShapeDistance(0.4, at(centre, Vector3d(1, -1, 2)), convex, X_WS);
   };
-  for (int h = 0; h < 200; ++h) {
-    fillers.push_back(convexOf(ringHull(4, 6, Vector3d(0.5, 0.4, 0.3 + 0.001 * h)), &unused));
+  for (int h = 0; h < 1100; ++h) {  // more than the cache's 1024 slots
+    fillers.push_back(convexOf(ringHull(4, 6, Vector3d(0.5, 0.4, 0.3 + 0.0001 * h)), &unused));
     query(*fillers.back(), Vector3d(0.9, 0.2, 0.3));
   }
   const Vector3d centres[] = {{0.9, 0.2, 0.3}, {-0.4, 0.8, 0.1}, {0.2, -0.3, 1.0}};

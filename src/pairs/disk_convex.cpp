@@ -124,8 +124,8 @@ struct ConvexGeometry {
   bool valid = false;  ///< ConvexTraits::valid's verdict on the lists
   std::vector<ConvexFace> faces;
   /// The faces' edges and triangle projections, appended as queries reach
-  /// them (ConvexTarget::detailOf); their capacity, reserved with the
-  /// geometry, holds every face's, so references into them stay valid.
+  /// them (ConvexTarget::detailOf). They grow while a query runs, so a
+  /// reference into them is read before the next face's detail is asked for.
   mutable std::vector<ConvexEdge> edges;
   mutable std::vector<TriangleProjection> triangles;
   /// The face planes again, one column per coordinate (n_x, n_y, n_z, offset),
@@ -172,12 +172,15 @@ struct ConvexGeometry {
   mutable std::array<Vec3, 14> probes{};
   mutable bool hull_edges_built = false;
 
-  /// The heap memory it holds when computed, in bytes (hull_edges, built
-  /// later and only for contacts, is not counted).
-  std::size_t bytes() const {
+  /// The heap memory it holds once every face's edges and triangle
+  /// projection are computed, in bytes: what it holds when computed, and
+  /// the details at most (`edge_count` edges over the faces, one triangle
+  /// projection a face at most). hull_edges, built only for contacts, is not
+  /// counted.
+  std::size_t bytes(std::size_t edge_count) const {
     const auto of = [](const auto& list) { return list.capacity() * sizeof(list[0]); };
-    return of(faces) + of(edges) + of(triangles) + of(clusters) + of(neighbour_start) +
-           of(face_neighbours) +
+    return of(faces) + edge_count * sizeof(ConvexEdge) + faces.size() * sizeof(TriangleProjection) +
+           of(clusters) + of(neighbour_start) + of(face_neighbours) +
            sizeof(double) * std::size_t(planes.size() + points.size() + clustered_points.size() +
                                         heights.size() + along.size());
   }
@@ -187,11 +190,13 @@ struct ConvexGeometry {
 /// geometry of (ConvexGeometryCache): a planner's scene holds many hulls and a
 /// broadphase queries those near a disk in turn, and a hull whose geometry was
 /// dropped costs several queries (40 vertices, 76 faces: ~20k instructions
-/// against ~4k; docs/disk_shape_distance.md, section 4). 128
-/// hulls of 40 vertices hold ~6 MB; hulls of 100 vertices (~0.17 MB each) stop
-/// at the budget at ~96, of 1000 vertices (~0.6 MB) at ~27.
-constexpr std::size_t kMaxCachedHulls = 128;
-constexpr std::size_t kCachedHullBytes = std::size_t(16) << 20;
+/// against ~4k; docs/disk_shape_distance.md, section 4). The budget counts
+/// every face's details, which a hull holds only once queries have reached
+/// them all: ~47 KB for 40 random points on a sphere (~15 KB before any),
+/// so 1024 such hulls fit; hulls of 100 points (~128 KB) stop at it at ~390,
+/// of 1000 points (~1.3 MB) at ~38.
+constexpr std::size_t kMaxCachedHulls = 1024;
+constexpr std::size_t kCachedHullBytes = std::size_t(48) << 20;
 
 /// The geometry of up to kMaxCachedHulls hulls this thread queried, each with
 /// a copy of the lists it was computed from. A hit needs the address and the
@@ -218,16 +223,21 @@ struct ConvexGeometryCache {
   };
   /// The slot of the last new hull not kept.
   static constexpr std::size_t kQuerySlot = kMaxCachedHulls;
-  /// Each slot's hull address (never dereferenced; null while rebuilt), apart
-  /// from the entries so that a lookup scans one short array.
+  /// Each slot's hull address (never dereferenced; null while rebuilt).
   std::array<const void*, kMaxCachedHulls + 1> shapes{};
-  /// Fixed slots: the geometry a query holds stays where it is while another
-  /// slot is filled.
-  std::array<Entry, kMaxCachedHulls + 1> entries;
+  /// Each slot's entry, made when the slot is first filled; on the heap, so
+  /// the geometry a query holds stays where it is while another slot is
+  /// filled.
+  std::array<std::unique_ptr<Entry>, kMaxCachedHulls + 1> entries;
   std::size_t filled = 0;       ///< kept slots in use, the first ones
   std::size_t bytes = 0;        ///< held by the kept entries
   std::uint64_t new_hulls = 0;  ///< new hulls met with every slot in use
   std::size_t verified = kQuerySlot;  ///< the slot geometryOf() compared last
+  /// The kept slots by address: open addressing with linear probing over
+  /// twice as many buckets as slots, each 1 + its slot (0: empty).
+  static constexpr std::size_t kIndexBuckets = 2 * kMaxCachedHulls;
+  std::array<std::uint16_t, kIndexBuckets> index{};
+  static_assert(kMaxCachedHulls < 0xffff, "a bucket holds 1 + a slot");
 
   /// Whether `slot` holds a hull: a kept slot or kQuerySlot.
   bool holds(std::size_t slot) const { return slot < filled || slot == kQuerySlot; }
@@ -235,13 +245,54 @@ struct ConvexGeometryCache {
   /// What slotOf() returns for an address no slot keeps.
   static constexpr std::size_t kNoSlot = kMaxCachedHulls + 1;
 
+  /// The bucket where the search for `shape` starts: the address's bits
+  /// above an allocation's alignment, mixed by a multiplicative hash.
+  static std::size_t homeBucket(const void* shape) {
+    const std::uint64_t bits = std::uint64_t(reinterpret_cast<std::uintptr_t>(shape)) >> 4;
+    return std::size_t((bits * 0x9E3779B97F4A7C15ull) >> 32) % kIndexBuckets;
+  }
+  static std::size_t nextBucket(std::size_t bucket) { return (bucket + 1) % kIndexBuckets; }
+
   /// The slot keeping `shape`'s address (the last one compared first, then
-  /// kQuerySlot), or kNoSlot.
+  /// kQuerySlot, then the index), or kNoSlot.
   std::size_t slotOf(const void* shape) const {
     if (holds(verified) && shapes[verified] == shape) return verified;
     if (shapes[kQuerySlot] == shape) return kQuerySlot;
-    const auto kept = std::find(shapes.begin(), shapes.begin() + filled, shape);
-    return kept != shapes.begin() + filled ? std::size_t(kept - shapes.begin()) : kNoSlot;
+    for (std::size_t bucket = homeBucket(shape); index[bucket] != 0; bucket = nextBucket(bucket)) {
+      if (shapes[index[bucket] - 1u] == shape) return index[bucket] - 1u;
+    }
+    return kNoSlot;
+  }
+
+  /// Lists kept slot `slot` under its address (shapes[slot], not listed).
+  void addToIndex(std::size_t slot) {
+    std::size_t bucket = homeBucket(shapes[slot]);
+    while (index[bucket] != 0) bucket = nextBucket(bucket);
+    index[bucket] = std::uint16_t(slot + 1);
+  }
+  /// Unlists kept slot `slot` (listed under shapes[slot]), moving back the
+  /// entries after it whose search would otherwise pass the gap (deletion
+  /// without tombstones).
+  void removeFromIndex(std::size_t slot) {
+    std::size_t gap = homeBucket(shapes[slot]);
+    while (index[gap] != slot + 1) gap = nextBucket(gap);
+    index[gap] = 0;
+    for (std::size_t bucket = nextBucket(gap); index[bucket] != 0; bucket = nextBucket(bucket)) {
+      const std::size_t home = homeBucket(shapes[index[bucket] - 1u]);
+      // Moved back when its home is not within (gap, bucket], cyclically.
+      const bool home_after_gap = gap < bucket ? (home > gap && home <= bucket)
+                                               : (home > gap || home <= bucket);
+      if (!home_after_gap) {
+        index[gap] = index[bucket];
+        index[bucket] = 0;
+        gap = bucket;
+      }
+    }
+  }
+
+  Entry& entry(std::size_t slot) {
+    if (!entries[slot]) entries[slot] = std::make_unique<Entry>();
+    return *entries[slot];
   }
 
   /// Where a new hull of `new_bytes` goes: a free slot while the count and the
@@ -316,7 +367,7 @@ struct ConvexTarget {
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
     if (cached.holds(slot)) {
-      const auto& entry = cached.entries[slot];
+      const auto& entry = *cached.entries[slot];
       if (entry.face_count == shape.getFaceCount() && sameBytes(entry.vertices, vertices) &&
           sameBytes(entry.face_list, face_list)) {
         cached.verified = slot;
@@ -324,11 +375,13 @@ struct ConvexTarget {
       }
     }
     ConvexGeometry geometry = computeGeometry(shape);
-    const std::size_t bytes = geometry.bytes() + vertices.size() * sizeof(vertices[0]) +
+    const std::size_t edge_count = face_list.size() - std::size_t(std::max(shape.getFaceCount(), 0));
+    const std::size_t bytes = geometry.bytes(edge_count) + vertices.size() * sizeof(vertices[0]) +
                               face_list.size() * sizeof(int);
     if (slot == ConvexGeometryCache<S>::kNoSlot) slot = cached.slotForNewHull(bytes);
-    auto& entry = cached.entries[slot];
+    auto& entry = cached.entry(slot);
     const bool kept = slot != ConvexGeometryCache<S>::kQuerySlot;
+    if (kept && cached.shapes[slot] != nullptr) cached.removeFromIndex(slot);
     cached.shapes[slot] = nullptr;  // invalid while rebuilt
     cached.verified = ConvexGeometryCache<S>::kQuerySlot;
     if (kept) cached.bytes -= entry.bytes;
@@ -340,6 +393,7 @@ struct ConvexTarget {
     entry.bytes = bytes;
     if (kept) cached.bytes += bytes;
     cached.shapes[slot] = &shape;
+    if (kept) cached.addToIndex(slot);
     cached.verified = slot;
     return entry.geometry;
   }
@@ -350,7 +404,7 @@ struct ConvexTarget {
   static const ConvexGeometry& verifiedGeometryOf(const fcl::Convex<S>& shape) {
     const ConvexGeometryCache<S>& cached = cache();
     return cached.shapes[cached.verified] == &shape
-               ? cached.entries[cached.verified].geometry
+               ? cached.entries[cached.verified]->geometry
                : geometryOf(shape);
   }
 
@@ -383,8 +437,6 @@ struct ConvexTarget {
     int& largest_face = geometry.largest_face;
     bool& flat = geometry.flat;
     faces.resize(std::size_t(shape.getFaceCount()));
-    geometry.edges.reserve(list.size() - std::size_t(shape.getFaceCount()));  // one per index
-    geometry.triangles.reserve(shape.getFaceCount());
     geometry.planes.resize(shape.getFaceCount(), 4);
     std::size_t at = 0;
     double largest_area = -1.0;
@@ -484,7 +536,7 @@ struct ConvexTarget {
   static std::vector<std::pair<std::uint64_t, int>> sortedFaceEdges(
       const std::vector<int>& list, const ConvexGeometry& geometry) {
     std::vector<std::pair<std::uint64_t, int>> edges;
-    edges.reserve(geometry.edges.capacity());
+    edges.reserve(list.size() - geometry.faces.size());  // one per index
     for (std::size_t f = 0; f < geometry.faces.size(); ++f) {
       const int* index = &list[geometry.faces[f].start];
       const int count = geometry.faces[f].count;
