@@ -1,10 +1,13 @@
 // Disk - fcl::Convex: its nearest feature paired with the disk in closed form
-// (ConvexTraits::closedForm), else the generic solver with the polytope's
-// projection (the nearest of the faces whose planes see the point) and support
-// (a vertex); large hulls climb their face graph and keep their vertices in
-// clusters. docs/disk_shape_distance.md, section 4.
+// (ConvexTraits::closedForm: found through the face planes, or for hulls of
+// kSupportSearchVertexCount vertices or more through the vertices' support
+// alone), else the generic solver with the polytope's projection (the nearest
+// of the faces whose planes see the point) and support (a vertex); large hulls
+// climb their face graph and keep their vertices in clusters.
+// docs/disk_shape_distance.md, section 4.
 #include "../disk_shape_pair.h"
 #include "feature_candidates.h"
+#include "point_to_hull.h"
 #include "polygon_projection.h"
 
 #include <algorithm>
@@ -49,6 +52,16 @@ constexpr int kFeaturePasses = 3;
 /// change often (measured in docs/disk_shape_distance.md, section 4).
 constexpr std::size_t kClusteringVertexCount = 64;
 constexpr int kClusterSize = 16;
+
+/// Hulls with at least this many vertices find the nearest feature of the
+/// closed form by the support search of point_to_hull.h (ConvexTraits::
+/// closedFormBySupport), which reads the vertices only, on every query: a hull
+/// not kept (ConvexGeometryCache) then computes no face planes unless the
+/// generic solver needs them, which cost more than GJK's whole query from
+/// ~100 vertices on. Below, the planes' one scan costs fewer instructions
+/// than the search's several vertex scans (docs/disk_shape_distance.md,
+/// section 4), and a hull's planes less than a query of GJK.
+constexpr std::size_t kSupportSearchVertexCount = 64;
 
 /// Hulls with at least this many faces find a point's nearest feature by
 /// climbing the face graph first (ConvexTarget::nearestOverFaces): a scan of
@@ -122,6 +135,11 @@ struct ConvexEdge {
 /// its largest face.
 struct ConvexGeometry {
   bool valid = false;  ///< ConvexTraits::valid's verdict on the lists
+  /// Whether the faces, their planes, flatness, largest face, thickness and
+  /// graph are computed: with the rest for hulls below
+  /// kSupportSearchVertexCount vertices, else when a query first needs them
+  /// (ConvexTarget::ensureFaces).
+  bool has_faces = false;
   std::vector<ConvexFace> faces;
   /// The faces' edges and triangle projections, appended as queries reach
   /// them (ConvexTarget::detailOf). They grow while a query runs, so a
@@ -141,9 +159,12 @@ struct ConvexGeometry {
     double radius;
     int begin, end;
   };
-  /// The vertices by cluster (hulls of kClusteringVertexCount vertices or more).
+  /// The vertices by cluster (hulls of kClusteringVertexCount vertices or
+  /// more, from their second query on a thread: only speed depends on them),
+  /// with each clustered row's index in `points`.
   std::vector<VertexCluster> clusters;
   Eigen::Matrix<double, Eigen::Dynamic, 3> clustered_points;
+  std::vector<int> cluster_order;
   /// Faces sharing an edge, face f's from face_neighbours[neighbour_start[f]]
   /// to before [neighbour_start[f + 1]] (hulls of kClimbingFaceCount faces or more).
   std::vector<int> neighbour_start, face_neighbours;
@@ -172,17 +193,19 @@ struct ConvexGeometry {
   mutable std::array<Vec3, 14> probes{};
   mutable bool hull_edges_built = false;
 
-  /// The heap memory it holds once every face's edges and triangle
-  /// projection are computed, in bytes: what it holds when computed, and
-  /// the details at most (`edge_count` edges over the faces, one triangle
-  /// projection a face at most). hull_edges, built only for contacts, is not
-  /// counted.
-  std::size_t bytes(std::size_t edge_count) const {
-    const auto of = [](const auto& list) { return list.capacity() * sizeof(list[0]); };
-    return of(faces) + edge_count * sizeof(ConvexEdge) + faces.size() * sizeof(TriangleProjection) +
-           of(clusters) + of(neighbour_start) + of(face_neighbours) +
-           sizeof(double) * std::size_t(planes.size() + points.size() + clustered_points.size() +
-                                        heights.size() + along.size());
+  /// The heap memory a hull's geometry holds at most, in bytes, once its
+  /// faces, clusters and every face's edges and triangle projection are
+  /// computed: `vertex_count` vertices, `face_count` faces listing
+  /// `edge_count` vertex indices in all (one edge each). hull_edges, built
+  /// only for contacts, is not counted.
+  static std::size_t budgetBytes(std::size_t vertex_count, std::size_t face_count,
+                                 std::size_t edge_count) {
+    const std::size_t most_clusters = 2 * vertex_count / kClusterSize + 1;  // leaves >= half full
+    return face_count * (sizeof(ConvexFace) + sizeof(TriangleProjection) + 5 * sizeof(double) +
+                         sizeof(int)) +
+           edge_count * (sizeof(ConvexEdge) + sizeof(int)) +
+           vertex_count * (7 * sizeof(double) + sizeof(int)) +
+           most_clusters * sizeof(VertexCluster);
   }
 };
 
@@ -367,17 +390,24 @@ struct ConvexTarget {
     const auto& vertices = shape.getVertices();
     const auto& face_list = shape.getFaces();
     if (cached.holds(slot)) {
-      const auto& entry = *cached.entries[slot];
+      auto& entry = *cached.entries[slot];
       if (entry.face_count == shape.getFaceCount() && sameBytes(entry.vertices, vertices) &&
           sameBytes(entry.face_list, face_list)) {
         cached.verified = slot;
+        if (entry.geometry.valid && entry.geometry.clusters.empty() &&
+            std::size_t(entry.geometry.points.rows()) >= kClusteringVertexCount) {
+          buildClusters(&entry.geometry);  // a hull met again
+        }
         return entry.geometry;
       }
     }
     ConvexGeometry geometry = computeGeometry(shape);
-    const std::size_t edge_count = face_list.size() - std::size_t(std::max(shape.getFaceCount(), 0));
-    const std::size_t bytes = geometry.bytes(edge_count) + vertices.size() * sizeof(vertices[0]) +
-                              face_list.size() * sizeof(int);
+    const std::size_t face_count = std::size_t(shape.getFaceCount());  // >= 0 when valid
+    const std::size_t bytes =
+        (geometry.valid ? ConvexGeometry::budgetBytes(vertices.size(), face_count,
+                                                      face_list.size() - face_count)
+                        : 0) +
+        vertices.size() * sizeof(vertices[0]) + face_list.size() * sizeof(int);
     if (slot == ConvexGeometryCache<S>::kNoSlot) slot = cached.slotForNewHull(bytes);
     auto& entry = cached.entry(slot);
     const bool kept = slot != ConvexGeometryCache<S>::kQuerySlot;
@@ -432,6 +462,25 @@ struct ConvexTarget {
       geometry.bounding_radius = std::max(geometry.bounding_radius, safeNorm(v));
     }
     geometry.centre = geometry.points.colwise().mean().transpose();
+    if (std::size_t(geometry.points.rows()) < kSupportSearchVertexCount) {
+      computeFaces(shape, &geometry);
+    }
+    return geometry;
+  }
+
+  /// The faces' part of `shape`'s geometry where it is not computed yet: a
+  /// hull's own geometry, this thread's (ConvexGeometryCache), so it is
+  /// completed in place.
+  static void ensureFaces(const fcl::Convex<S>& shape, const ConvexGeometry& geometry) {
+    if (!geometry.has_faces) computeFaces(shape, &const_cast<ConvexGeometry&>(geometry));
+  }
+
+  /// ConvexGeometry's faces, planes, flatness, largest face, thickness and
+  /// face graph, for valid lists.
+  static void computeFaces(const fcl::Convex<S>& shape, ConvexGeometry* geometry_out) {
+    ConvexGeometry& geometry = *geometry_out;
+    const fcl::Vector3<S>* const vertices = shape.getVertices().data();
+    const auto vertex = [vertices](int index) { return vertices[index].template cast<double>(); };
     const std::vector<int>& list = shape.getFaces();
     std::vector<ConvexFace>& faces = geometry.faces;
     int& largest_face = geometry.largest_face;
@@ -479,8 +528,7 @@ struct ConvexTarget {
       at += count + 1;
     }
     if (faces.size() >= kClimbingFaceCount) buildFaceGraph(list, &geometry);
-    if (std::size_t(geometry.points.rows()) >= kClusteringVertexCount) buildClusters(&geometry);
-    return geometry;
+    geometry.has_faces = true;
   }
 
   /// ConvexGeometry's vertex clusters: the vertices split at the median of
@@ -495,6 +543,7 @@ struct ConvexTarget {
       const auto [begin, end] = pending.back();
       pending.pop_back();
       if (end - begin <= kClusterSize) {
+        std::sort(order.begin() + begin, order.begin() + end);  // index order within a cluster
         leaves.push_back({begin, end});
         continue;
       }
@@ -515,6 +564,7 @@ struct ConvexTarget {
     for (std::size_t i = 0; i < order.size(); ++i) {
       geometry->clustered_points.row(Eigen::Index(i)) = points.row(order[i]);
     }
+    geometry->cluster_order = std::move(order);
     for (const auto& [begin, end] : leaves) {
       const auto rows = geometry->clustered_points.middleRows(begin, end - begin);
       const Vec3 centre = rows.colwise().mean().transpose();
@@ -1019,11 +1069,51 @@ struct ConvexTarget {
     return best;
   }
 
-  Vec3 support(const Vec3& w) const {
-    Eigen::Index best = 0;  // ties take the first vertex
-    alongVertices(w).maxCoeff(&best);
-    return points.row(best).transpose();
+  /// The index of the vertex maximising w.v, the first of those that tie:
+  /// the same whether the hull has its clusters yet or not (the same
+  /// products, and a cluster is skipped only where its ball's bound, less
+  /// twice the rounding as in mostAlong, stays below the best found), so that
+  /// answers do not depend on the queries before.
+  int supportIndex(const Vec3& w) const {
+    const auto& clusters = geometry.clusters;
+    if (clusters.empty()) {
+      const Eigen::VectorXd& along = alongVertices(w);
+      const double most = along.maxCoeff();
+      return int(std::find(along.data(), along.data() + along.size(), most) - along.data());
+    }
+    const double w_length = w.norm();
+    const double slack = 2.0 * kDotRounding * w.cwiseAbs().sum() * geometry.bounding_radius;
+    std::size_t first = 0;
+    double first_bound = -std::numeric_limits<double>::infinity();
+    for (std::size_t g = 0; g < clusters.size(); ++g) {
+      const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
+      if (bound > first_bound) first = g, first_bound = bound;
+    }
+    double best = -std::numeric_limits<double>::infinity();
+    int best_index = -1;
+    // A cluster's largest value, and its first vertex reaching it, the least
+    // index among them (a cluster's rows are in index order); on the stack: a
+    // cluster holds kClusterSize at most.
+    const auto scan = [&](const typename ConvexGeometry::VertexCluster& cluster) {
+      const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
+      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kClusterSize, 1> along =
+          rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z();
+      const double most = along.maxCoeff();
+      if (most < best) return;
+      const int index = geometry.cluster_order[std::size_t(
+          cluster.begin + (std::find(along.data(), along.data() + along.size(), most) - along.data()))];
+      if (most > best || index < best_index) best = most, best_index = index;
+    };
+    scan(clusters[first]);
+    for (std::size_t g = 0; g < clusters.size(); ++g) {
+      if (g == first) continue;
+      const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
+      if (bound + slack >= best) scan(clusters[g]);
+    }
+    return best_index;
   }
+
+  Vec3 support(const Vec3& w) const { return points.row(supportIndex(w)).transpose(); }
 
   /// The faces of nonzero area, for the nearly-parallel candidates.
   template <typename Visit>
@@ -1047,11 +1137,122 @@ struct ConvexTraits {
   }
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
   static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
-    return ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex));
+    const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(convex);
+    ConvexTarget<S>::ensureFaces(convex, geometry);
+    return ConvexTarget<S>(convex, geometry);
   }
   /// The polytope by its nearest feature (docs/disk_shape_distance.md,
-  /// section 4), passes of an alternating projection whose hull side is a
-  /// feature solved exactly against the disk: from p, the disk's point nearest
+  /// section 4): found through the face planes (closedFormByFaces) below
+  /// kSupportSearchVertexCount vertices, through the vertices' support
+  /// alone (closedFormBySupport) from there on. Not exact means only "not
+  /// settled here": the generic solver answers.
+  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Convex<S>& convex,
+                               double scale) {
+    const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(convex);
+    if (std::size_t(geometry.points.rows()) >= kSupportSearchVertexCount) {
+      return closedFormBySupport(disk, ConvexTarget<S>(convex, geometry), scale);
+    }
+    return closedFormByFaces(disk, convex, scale);
+  }
+
+  /// The closed form's passes with the hull's feature nearest p found by the
+  /// support search (nearestHullSimplex, from the last pass's simplex; the
+  /// first pass's from the vertex most towards p from the centre), which
+  /// reads `hull`'s vertices only (its faces need not be computed): from p,
+  /// the disk's point nearest the hull's centre,
+  ///  * p inside a tetrahedron of vertices, or within kShapeGapTolerance of
+  ///    the scene of the hull: p is a common point (at that distance);
+  ///  * a vertex or an edge: paired as in closedFormByFaces;
+  ///  * a triangle of vertices holding p's nearest point inside it (its plane
+  ///    is then a face plane of the hull, p beyond it): the disk's point
+  ///    deepest towards it, with its foot when that lies inside the triangle
+  ///    (the plane separates the sets), else the triangle's vertex or edge
+  ///    nearest it; where the deepest point reaches the plane, the disk's
+  ///    point x on the plane between p and it is common when the triangle
+  ///    holds it, else the triangle's vertex or edge nearest x is paired.
+  /// Certified as closedFormByFaces, with no faces' thickness: every pair is
+  /// of points of the disk and of the hull of the vertices, whose support the
+  /// certificate reads.
+  static LeafToDisk closedFormBySupport(const DiskInShape& disk, const ConvexTarget<S>& hull,
+                                        double scale) {
+    const LeafToDisk not_settled;
+    const auto least_along = [&](const Vec3& w) { return -hull.mostAlong(-w); };
+    const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_hull) {
+      return certifiedAlongItself(disk, least_along, upper, p_disk, p_hull, scale);
+    };
+    const auto most_along = [&](const Vec3& w) { return hull.supportIndex(w); };
+    const auto point = [&](int index) -> Vec3 { return hull.points.row(index).transpose(); };
+    const Vec3& centre = hull.geometry.centre;
+    Vec3 p = disk.point(disk.nearest(centre));
+    HullSimplex simplex;
+    simplex.count = 1;
+    simplex.index[0] = most_along(p - centre);
+    for (int pass = 0; pass < kFeaturePasses; ++pass) {
+      simplex = nearestHullSimplex(p, simplex, most_along, point);
+      if (simplex.inside()) return meetingAt(p);
+      const double gap = simplex.v.norm();
+      if (gap <= kShapeGapTolerance * scale) return certifiedOrBound(0.0, gap, p, p + simplex.v, scale);
+      Vec3 next;
+      // A vertex or an edge of the hull paired with the disk, certified, its
+      // disk point the next pass's start; a common point where the edge
+      // crosses the disk within the rim.
+      const auto against_boundary = [&](const HullSimplex& feature) {
+        if (feature.count == 1) {
+          const Vec3 v = point(feature.index[0]);
+          next = disk.point(disk.nearest(v));
+          return certified((v - next).norm(), next, v);
+        }
+        const Vec3 a = point(feature.index[0]), b = point(feature.index[1]);
+        const SegmentToDisk edge = segmentToDisk(disk, a, b);
+        next = edge.p_disk;
+        const LeafToDisk by_edge = certifiedSegmentPair(disk, least_along, edge, scale);
+        if (by_edge.exact) return by_edge;
+        if (const auto common = segmentCrossingWithinRim(disk, a, b)) return meetingAt(disk, *common);
+        return not_settled;
+      };
+      LeafToDisk answer;
+      if (simplex.count < 3) {
+        answer = against_boundary(simplex);
+      } else {
+        // The triangle's feature nearest y: its Voronoi region's points.
+        const auto triangle_region = [&](const Vec3& y) {
+          HullSimplex region = simplex;
+          for (int k = 0; k < 3; ++k) region.relative[k] = point(simplex.index[k]) - y;
+          hull_simplex::nearestOnTriangle(&region, 0, 1, 2);
+          return region;
+        };
+        const Vec3 a = point(simplex.index[0]), b = point(simplex.index[1]),
+                   c = point(simplex.index[2]);
+        const Vec3 normal = (b - a).cross(c - a);
+        const double normal_length = normal.norm();
+        if (!(normal_length > 0.0)) return not_settled;
+        const Vec3 m = ((normal.dot(p - a) < 0.0 ? -1.0 : 1.0) / normal_length) * normal;
+        const Vec3 deepest = disk.lowestAlong(m);
+        const double height = m.dot(deepest - a);
+        if (height > 0.0) {
+          next = deepest;
+          const HullSimplex below = triangle_region(deepest);
+          answer = below.count == 3 ? certified(below.v.norm(), deepest, deepest + below.v)
+                                    : against_boundary(below);
+        } else {
+          const double p_height = m.dot(p - a);
+          const Vec3 x = p + (p_height / (p_height - height)) * (deepest - p);
+          const HullSimplex beside = triangle_region(x);
+          if (beside.count == 3) return certifiedOrBound(0.0, beside.v.norm(), x, x + beside.v, scale);
+          answer = against_boundary(beside);
+        }
+      }
+      if (answer.exact) return answer;
+      if (next == p) break;  // a pair whose certificate stays open: no progress
+      p = next;
+    }
+    return not_settled;
+  }
+
+  /// The polytope by its nearest feature through its face planes
+  /// (docs/disk_shape_distance.md, section 4), passes of an alternating
+  /// projection whose hull side is a feature solved exactly against the
+  /// disk: from p, the disk's point nearest
   /// the hull's centre (the vertices' mean), the hull's feature nearest p
   /// (nearestFeature) and its pair with the disk:
   ///  * none, p inside every face plane: p is a common point;
@@ -1073,8 +1274,8 @@ struct ConvexTraits {
   /// kFeaturePasses. Not exact means only "not settled here": the generic
   /// solver answers. A flat polytope, whose plane tests cannot tell its
   /// inside, is left to it.
-  static LeafToDisk closedForm(const DiskInShape& disk, const fcl::Convex<S>& convex,
-                               double scale) {
+  static LeafToDisk closedFormByFaces(const DiskInShape& disk, const fcl::Convex<S>& convex,
+                                      double scale) {
     using Feature = typename ConvexTarget<S>::Feature;
     const ConvexTarget<S> hull = target(convex);
     const LeafToDisk not_settled;
