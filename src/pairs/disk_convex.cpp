@@ -1073,13 +1073,15 @@ struct ConvexTarget {
   /// the same whether the hull has its clusters yet or not (the same
   /// products, and a cluster is skipped only where its ball's bound, less
   /// twice the rounding as in mostAlong, stays below the best found), so that
-  /// answers do not depend on the queries before.
+  /// answers do not depend on the queries before. 0 for a w whose products
+  /// are all NaN.
   int supportIndex(const Vec3& w) const {
     const auto& clusters = geometry.clusters;
     if (clusters.empty()) {
       const Eigen::VectorXd& along = alongVertices(w);
-      const double most = along.maxCoeff();
-      return int(std::find(along.data(), along.data() + along.size(), most) - along.data());
+      const double* const end = along.data() + along.size();
+      const double* const at = std::find(along.data(), end, along.maxCoeff());
+      return at == end ? 0 : int(at - along.data());
     }
     const double w_length = w.norm();
     const double slack = 2.0 * kDotRounding * w.cwiseAbs().sum() * geometry.bounding_radius;
@@ -1099,9 +1101,10 @@ struct ConvexTarget {
       const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kClusterSize, 1> along =
           rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z();
       const double most = along.maxCoeff();
-      if (most < best) return;
-      const int index = geometry.cluster_order[std::size_t(
-          cluster.begin + (std::find(along.data(), along.data() + along.size(), most) - along.data()))];
+      const double* const end = along.data() + along.size();
+      const double* const at = std::find(along.data(), end, most);
+      if (most < best || at == end) return;
+      const int index = geometry.cluster_order[std::size_t(cluster.begin + (at - along.data()))];
       if (most > best || index < best_index) best = most, best_index = index;
     };
     scan(clusters[first]);
@@ -1110,7 +1113,7 @@ struct ConvexTarget {
       const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
       if (bound + slack >= best) scan(clusters[g]);
     }
-    return best_index;
+    return best_index < 0 ? 0 : best_index;
   }
 
   Vec3 support(const Vec3& w) const { return points.row(supportIndex(w)).transpose(); }
