@@ -364,10 +364,23 @@ struct ConvexTarget {
   /// This thread's cache, on the heap: a library's thread-local block must fit
   /// the static TLS a process gives a library it loads with dlopen (the hook's
   /// initial-exec counter puts the whole block there), a few hundred bytes.
+  /// Read through an initial-exec pointer (8 bytes there), without the call a
+  /// thread_local object of a shared library costs on every access (a query
+  /// reads the cache four to six times); its owner frees the cache at the
+  /// thread's exit and clears the pointer.
   static ConvexGeometryCache<S>& cache() {
-    thread_local std::unique_ptr<ConvexGeometryCache<S>> cache;
-    if (!cache) cache = std::make_unique<ConvexGeometryCache<S>>();
-    return *cache;
+    __attribute__((tls_model("initial-exec"))) static thread_local ConvexGeometryCache<S>* current =
+        nullptr;
+    if (current == nullptr) {
+      struct Owner {
+        std::unique_ptr<ConvexGeometryCache<S>> cache;
+        ~Owner() { current = nullptr; }
+      };
+      thread_local Owner owner;
+      owner.cache = std::make_unique<ConvexGeometryCache<S>>();
+      current = owner.cache.get();
+    }
+    return *current;
   }
 
   /// Whether two lists hold the same values bit for bit (one memcmp: a
