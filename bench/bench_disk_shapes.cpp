@@ -419,14 +419,16 @@ void benchHullContacts(benchmark::State& state, int vertex_count, bool flat_cyli
   state.counters["mean_depth"] = depths / double(std::max<std::int64_t>(1, state.iterations()));
 }
 
-/// `prefix`<n>/<variant>/double for each n of `counts`: the disk and the flat
-/// cylinder (libccd) through pool_of(n)'s hulls in turn.
+/// `prefix`<n>/<variant>/double for each n of `counts`: fcl::distance of the
+/// disk and of the flat cylinder (libccd), and fcl::collide of the disk,
+/// through pool_of(n)'s hulls in turn.
 template <std::size_t N>
 void registerInTurn(const char* prefix, const int (&counts)[N],
                     const Pool<double>& (*pool_of)(int)) {
   for (const int n : counts) {
     for (const Query& q : {Query{ShapeKind::convex40, Variant::distance_disk, fcl::GST_LIBCCD},
-                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD}}) {
+                           Query{ShapeKind::convex40, Variant::distance_flat_cylinder, fcl::GST_LIBCCD},
+                           Query{ShapeKind::convex40, Variant::collide_disk, fcl::GST_LIBCCD}}) {
       const std::string name = prefix + std::to_string(n) + "/" + variantName(q) + "/double";
       benchmark::RegisterBenchmark(name.c_str(), [n, q, pool_of](benchmark::State& st) {
         cycleThroughPool<double>(st, pool_of(n), q);

@@ -928,7 +928,8 @@ std::shared_ptr<fcl::Convexd> convexOf(const HullLists& lists,
 
 // Each thread keeps the geometry of the hulls it queries (ConvexGeometryCache):
 // queried in turn, 1100 hulls (more than the cache's 1024 slots; small and
-// large ones) give bit for bit the answers each gives queried alone.
+// large ones) give bit for bit the distances, and the same intersection
+// verdicts, each gives queried alone.
 TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
   constexpr int kHulls = 1100, kPoses = 3;
   std::vector<std::shared_ptr<fcl::Convexd>> hulls;
@@ -951,9 +952,17 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
   const auto query = [&](const fcl::Convexd& hull, int pose) {
     return fcl_disk::diskShapeDistance(0.4, disk_poses[pose], hull, X_WS);
   };
+  const auto intersects = [&](const fcl::Convexd& hull, int pose) {
+    return fcl_disk::diskShapeIntersect(0.4, disk_poses[pose], hull, X_WS,
+                                        static_cast<fcl_disk::DiskContact<double>*>(nullptr));
+  };
   std::vector<fcl_disk::DiskShapeDistanceResult<double>> alone;
+  std::vector<bool> alone_intersects;
   for (int h = 0; h < kHulls; ++h) {
-    for (int pose = 0; pose < kPoses; ++pose) alone.push_back(query(*hulls[h], pose));
+    for (int pose = 0; pose < kPoses; ++pose) {
+      alone.push_back(query(*hulls[h], pose));
+      alone_intersects.push_back(intersects(*hulls[h], pose));
+    }
   }
   for (int round = 0; round < 2; ++round) {
     for (int pose = 0; pose < kPoses; ++pose) {
@@ -963,6 +972,8 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
         ASSERT_EQ(in_turn.distance, expected.distance) << "hull " << h << " pose " << pose;
         ASSERT_EQ(in_turn.lower_bound, expected.lower_bound) << "hull " << h << " pose " << pose;
         ASSERT_EQ(in_turn.p_W_shape, expected.p_W_shape) << "hull " << h << " pose " << pose;
+        ASSERT_EQ(intersects(*hulls[h], pose), alone_intersects[std::size_t(h * kPoses + pose)])
+            << "hull " << h << " pose " << pose;
       }
     }
   }

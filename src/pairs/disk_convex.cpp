@@ -1539,7 +1539,36 @@ struct ConvexTraits {
 
 template <typename S>
 struct DiskShapePair<fcl::Convex<S>>
-    : GenericDiskShapePair<S, fcl::Convex<S>, ConvexTraits<S>> {};
+    : GenericDiskShapePair<S, fcl::Convex<S>, ConvexTraits<S>> {
+  using Generic = GenericDiskShapePair<S, fcl::Convex<S>, ConvexTraits<S>>;
+
+  /// The generic intersect(), but where no contact is asked for and the hull's
+  /// closed form reads its vertices only (kSupportSearchVertexCount), that
+  /// closed form decides first: the generic early exit reads the faces'
+  /// thickness, which a hull not kept would compute its faces for. The same
+  /// verdicts: a pair the early exit calls apart is further apart than the
+  /// touching tolerance, and the closed form decides as the generic path's.
+  static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const fcl::Convex<S>& shape,
+                        const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
+    const DiskAndShapePoseCheck poses = checkDiskAndShapePose(radius, X_WD, X_WS);
+    if (!poses.valid || !ConvexTraits<S>::valid(shape)) return false;
+    const DiskInShape disk = Generic::solvedDiskInShape(radius, X_WD, X_WS, poses.orthonormal);
+    const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(shape);
+    if (contact == nullptr && std::size_t(geometry.points.rows()) >= kSupportSearchVertexCount) {
+      const double scale = disk.r + geometry.bounding_radius + disk.c.norm();
+      DiskShapeSolution closed;
+      if (Generic::closedFormSolves(disk, shape, scale, &closed)) {
+        return closed.distance <= kShapeTouchingTolerance * scale;
+      }
+    }
+    FrameContact in_shape_frame;
+    if (!Generic::intersectInShapeFrame(disk, shape, contact ? &in_shape_frame : nullptr)) {
+      return false;
+    }
+    if (contact) *contact = contactInWorld<S>(X_WS, in_shape_frame.pos, in_shape_frame.separation);
+    return true;
+  }
+};
 
 }  // namespace internal
 }  // namespace fcl_disk
