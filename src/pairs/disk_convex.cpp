@@ -1051,16 +1051,14 @@ struct ConvexTarget {
   /// max over the vertices of w.v.
   double supportValue(const Vec3& w) const { return mostAlong(w); }
 
-  /// max over the vertices of w.v, as alongVertices(w).maxCoeff() gives it
-  /// (the same products, so the same value): by clusters where the hull has
-  /// them, the cluster whose ball reaches farthest along w first, then every
-  /// other whose ball could still hold a vertex beyond the best found. The
-  /// balls' bounds w.c + |w| r are compared with that best less twice the
-  /// rounding of either (kDotRounding |w|_1 B each): a skipped vertex's w.v
-  /// cannot exceed it.
-  double mostAlong(const Vec3& w) const {
+  /// Visits the hull's clusters for the largest w.v: first the cluster whose
+  /// ball reaches farthest along w, then every other whose ball bound
+  /// w.c + |w| r, plus twice the products' rounding (kDotRounding |w|_1 B
+  /// each), reaches best(), the largest value found: a skipped cluster holds
+  /// no vertex whose w.v reaches it.
+  template <typename Scan, typename Best>
+  void scanClustersAlong(const Vec3& w, Scan&& scan, Best&& best) const {
     const auto& clusters = geometry.clusters;
-    if (clusters.empty()) return alongVertices(w).maxCoeff();
     const double w_length = w.norm();
     const double slack = 2.0 * kDotRounding * w.cwiseAbs().sum() * geometry.bounding_radius;
     std::size_t first = 0;
@@ -1069,63 +1067,64 @@ struct ConvexTarget {
       const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
       if (bound > first_bound) first = g, first_bound = bound;
     }
-    const auto most_in = [&](const typename ConvexGeometry::VertexCluster& cluster) {
-      const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
-      return (rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z()).maxCoeff();
-    };
-    double best = most_in(clusters[first]);
+    scan(clusters[first]);
     for (std::size_t g = 0; g < clusters.size(); ++g) {
       if (g == first) continue;
       const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
-      if (bound + slack > best) best = std::max(best, most_in(clusters[g]));
+      if (bound + slack >= best()) scan(clusters[g]);
     }
+  }
+
+  /// max over the vertices of w.v, as alongVertices(w).maxCoeff() gives it
+  /// (the same products, so the same value): by clusters where the hull has
+  /// them (scanClustersAlong).
+  double mostAlong(const Vec3& w) const {
+    if (geometry.clusters.empty()) return alongVertices(w).maxCoeff();
+    double best = 0.0;
+    bool scanned = false;
+    scanClustersAlong(
+        w,
+        [&](const typename ConvexGeometry::VertexCluster& cluster) {
+          const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
+          const double most = (rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z()).maxCoeff();
+          best = scanned ? std::max(best, most) : most;
+          scanned = true;
+        },
+        [&] { return best; });
     return best;
   }
 
   /// The index of the vertex maximising w.v, the first of those that tie:
   /// the same whether the hull has its clusters yet or not (the same
-  /// products, and a cluster is skipped only where its ball's bound, less
-  /// twice the rounding as in mostAlong, stays below the best found), so that
-  /// answers do not depend on the queries before. 0 for a w whose products
-  /// are all NaN.
+  /// products, and scanClustersAlong skips no cluster that could tie), so
+  /// that answers do not depend on the queries before. 0 for a w whose
+  /// products are all NaN.
   int supportIndex(const Vec3& w) const {
-    const auto& clusters = geometry.clusters;
-    if (clusters.empty()) {
+    if (geometry.clusters.empty()) {
       const Eigen::VectorXd& along = alongVertices(w);
       const double* const end = along.data() + along.size();
       const double* const at = std::find(along.data(), end, along.maxCoeff());
       return at == end ? 0 : int(at - along.data());
-    }
-    const double w_length = w.norm();
-    const double slack = 2.0 * kDotRounding * w.cwiseAbs().sum() * geometry.bounding_radius;
-    std::size_t first = 0;
-    double first_bound = -std::numeric_limits<double>::infinity();
-    for (std::size_t g = 0; g < clusters.size(); ++g) {
-      const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
-      if (bound > first_bound) first = g, first_bound = bound;
     }
     double best = -std::numeric_limits<double>::infinity();
     int best_index = -1;
     // A cluster's largest value, and its first vertex reaching it, the least
     // index among them (a cluster's rows are in index order); on the stack: a
     // cluster holds kClusterSize at most.
-    const auto scan = [&](const typename ConvexGeometry::VertexCluster& cluster) {
-      const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
-      const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kClusterSize, 1> along =
-          rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z();
-      const double most = along.maxCoeff();
-      const double* const end = along.data() + along.size();
-      const double* const at = std::find(along.data(), end, most);
-      if (most < best || at == end) return;
-      const int index = geometry.cluster_order[std::size_t(cluster.begin + (at - along.data()))];
-      if (most > best || index < best_index) best = most, best_index = index;
-    };
-    scan(clusters[first]);
-    for (std::size_t g = 0; g < clusters.size(); ++g) {
-      if (g == first) continue;
-      const double bound = w.dot(clusters[g].centre) + w_length * clusters[g].radius;
-      if (bound + slack >= best) scan(clusters[g]);
-    }
+    scanClustersAlong(
+        w,
+        [&](const typename ConvexGeometry::VertexCluster& cluster) {
+          const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
+          const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kClusterSize, 1> along =
+              rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z();
+          const double most = along.maxCoeff();
+          const double* const end = along.data() + along.size();
+          const double* const at = std::find(along.data(), end, most);
+          if (most < best || at == end) return;
+          const int index = geometry.cluster_order[std::size_t(cluster.begin + (at - along.data()))];
+          if (most > best || index < best_index) best = most, best_index = index;
+        },
+        [&] { return best; });
     return best_index < 0 ? 0 : best_index;
   }
 
