@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "disk_shape_fcl.h"
+#include "pairs/point_to_hull.h"
 #include "hull_lists.h"
 #include "reference_disk_shape.h"
 #include "test_random.h"
@@ -387,6 +388,104 @@ void expectConvexCasesInClosedForm() {
 TEST(DiskShapeCases, ConvexVertexEdgeFaceAndCommonPointInClosedForm) {
   expectConvexCasesInClosedForm<double>();
   expectConvexCasesInClosedForm<float>();
+}
+
+/// The distance from q to the closed triangle a, b, c (or segment, or point:
+/// repeated corners), in long double: the foot on the plane where its
+/// barycentric coordinates are all >= 0, else the nearest of the edges.
+long double distanceToSimplex(const std::vector<Eigen::Vector3<long double>>& corners,
+                              const Eigen::Vector3<long double>& q) {
+  using V = Eigen::Vector3<long double>;
+  const auto to_segment = [&](const V& a, const V& b) {
+    const V ab = b - a;
+    const long double length_squared = ab.squaredNorm();
+    const long double t =
+        length_squared > 0 ? std::clamp((q - a).dot(ab) / length_squared, 0.0L, 1.0L) : 0.0L;
+    return (a + t * ab - q).norm();
+  };
+  if (corners.size() == 1) return (corners[0] - q).norm();
+  if (corners.size() == 2) return to_segment(corners[0], corners[1]);
+  const V& a = corners[0];
+  const V& b = corners[1];
+  const V& c = corners[2];
+  const V normal = (b - a).cross(c - a);
+  const long double area_squared = normal.squaredNorm();
+  if (area_squared > 0) {
+    const V foot = q - (normal.dot(q - a) / area_squared) * normal;
+    const long double w_a = (c - b).cross(foot - b).dot(normal),
+                      w_b = (a - c).cross(foot - c).dot(normal),
+                      w_c = (b - a).cross(foot - a).dot(normal);
+    if (w_a >= 0 && w_b >= 0 && w_c >= 0) return (foot - q).norm();
+  }
+  return std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
+}
+
+// The support search's simplex (src/pairs/point_to_hull.h) against brute force
+// in long double, on 4,000 random point sets of 4 to 123 points and query points
+// y in and around them: the simplex's point q is a point of its simplex; y
+// said inside lies in its tetrahedron (barycentric coordinates); and for sets
+// in general position no point lies beyond q along y - q (q is the hull's
+// nearest point to y). Sets on a grid or in a plane with points listed twice
+// (ties, flat simplices) only need the first: their feature is certified by
+// the caller.
+TEST(DiskShapeCases, NearestHullSimplexMatchesBruteForce) {
+  using fcl_disk::internal::HullSimplex;
+  using V = Eigen::Vector3<long double>;
+  std::mt19937_64 rng(53);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int inside = 0, beside = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const int kind = trial % 4;  // 0, 1: general position; 2: a grid; 3: a plane, points twice
+    const int n = 4 + int(rng() % 120);
+    std::vector<Vector3d> points;
+    for (int i = 0; i < n; ++i) {
+      Vector3d x(unit(rng), unit(rng), unit(rng));
+      if (kind == 2) x = (2.0 * x).array().round() / 2.0;
+      if (kind == 3) x = i % 3 == 2 ? points[std::size_t(i - 1)] : Vector3d(x.x(), x.y(), 0.25);
+      points.push_back(x);
+    }
+    const Vector3d y = 1.5 * Vector3d(unit(rng), unit(rng), unit(rng));
+    const auto most_along = [&](const Vector3d& w) {
+      int best = 0;
+      for (int i = 1; i < n; ++i) {
+        if (w.dot(points[std::size_t(i)]) > w.dot(points[std::size_t(best)])) best = i;
+      }
+      return best;
+    };
+    const auto point = [&](int i) { return points[std::size_t(i)]; };
+    HullSimplex start;
+    start.count = 1;
+    start.index[0] = int(rng() % std::uint64_t(n));
+    const HullSimplex simplex = fcl_disk::internal::nearestHullSimplex(y, start, most_along, point);
+    std::vector<V> corners;
+    for (int k = 0; k < std::min(simplex.count, 3); ++k) {
+      corners.push_back(points[std::size_t(simplex.index[std::size_t(k)])].cast<long double>());
+    }
+    const V y_long = y.cast<long double>();
+    if (simplex.inside()) {
+      ++inside;
+      const V d = points[std::size_t(simplex.index[3])].cast<long double>();
+      Eigen::Matrix<long double, 3, 3> edges;
+      edges << corners[1] - corners[0], corners[2] - corners[0], d - corners[0];
+      const V weights = edges.fullPivLu().solve(y_long - corners[0]);
+      EXPECT_GE(weights.minCoeff(), -1e-12L);
+      EXPECT_LE(weights.sum(), 1.0L + 1e-12L);
+      continue;
+    }
+    ++beside;
+    const V q = y_long + simplex.v.cast<long double>();
+    EXPECT_LE(distanceToSimplex(corners, q), 1e-14L);
+    if (kind < 2) {
+      long double beyond = 0;
+      for (const Vector3d& x : points) {
+        beyond = std::max(beyond, (y_long - q).dot(x.cast<long double>() - q));
+      }
+      EXPECT_LE(beyond, 1e-12L);
+    }
+  }
+  EXPECT_GT(inside, 400);
+  EXPECT_GT(beside, 2000);
 }
 
 // Overlaps settled by the closed forms, in float and double, each at the

@@ -1051,6 +1051,11 @@ struct ConvexTarget {
   /// max over the vertices of w.v.
   double supportValue(const Vec3& w) const { return mostAlong(w); }
 
+  /// A cluster's rows of clustered_points.
+  auto clusterRows(const typename ConvexGeometry::VertexCluster& cluster) const {
+    return geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
+  }
+
   /// Visits the hull's clusters for the largest w.v: first the cluster whose
   /// ball reaches farthest along w, then every other whose ball bound
   /// w.c + |w| r, plus twice the products' rounding (kDotRounding |w|_1 B
@@ -1085,8 +1090,9 @@ struct ConvexTarget {
     scanClustersAlong(
         w,
         [&](const typename ConvexGeometry::VertexCluster& cluster) {
-          const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
-          const double most = (rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z()).maxCoeff();
+          const auto rows = clusterRows(cluster);
+          const double most =
+              (rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z()).maxCoeff();
           best = scanned ? std::max(best, most) : most;
           scanned = true;
         },
@@ -1114,14 +1120,15 @@ struct ConvexTarget {
     scanClustersAlong(
         w,
         [&](const typename ConvexGeometry::VertexCluster& cluster) {
-          const auto rows = geometry.clustered_points.middleRows(cluster.begin, cluster.end - cluster.begin);
+          const auto rows = clusterRows(cluster);
           const Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kClusterSize, 1> along =
               rows.col(0) * w.x() + rows.col(1) * w.y() + rows.col(2) * w.z();
           const double most = along.maxCoeff();
           const double* const end = along.data() + along.size();
           const double* const at = std::find(along.data(), end, most);
           if (most < best || at == end) return;
-          const int index = geometry.cluster_order[std::size_t(cluster.begin + (at - along.data()))];
+          const int index =
+              geometry.cluster_order[std::size_t(cluster.begin + (at - along.data()))];
           if (most > best || index < best_index) best = most, best_index = index;
         },
         [&] { return best; });
@@ -1206,7 +1213,9 @@ struct ConvexTraits {
       simplex = nearestHullSimplex(p, simplex, most_along, point);
       if (simplex.inside()) return meetingAt(p);
       const double gap = simplex.v.norm();
-      if (gap <= kShapeGapTolerance * scale) return certifiedOrBound(0.0, gap, p, p + simplex.v, scale);
+      if (gap <= kShapeGapTolerance * scale) {
+        return certifiedOrBound(0.0, gap, p, p + simplex.v, scale);
+      }
       Vec3 next;
       // A vertex or an edge of the hull paired with the disk, certified, its
       // disk point the next pass's start; a common point where the edge
@@ -1222,7 +1231,9 @@ struct ConvexTraits {
         next = edge.p_disk;
         const LeafToDisk by_edge = certifiedSegmentPair(disk, least_along, edge, scale);
         if (by_edge.exact) return by_edge;
-        if (const auto common = segmentCrossingWithinRim(disk, a, b)) return meetingAt(disk, *common);
+        if (const auto common = segmentCrossingWithinRim(disk, a, b)) {
+          return meetingAt(disk, *common);
+        }
         return not_settled;
       };
       LeafToDisk answer;
@@ -1253,7 +1264,9 @@ struct ConvexTraits {
           const double p_height = m.dot(p - a);
           const Vec3 x = p + (p_height / (p_height - height)) * (deepest - p);
           const HullSimplex beside = triangle_region(x);
-          if (beside.count == 3) return certifiedOrBound(0.0, beside.v.norm(), x, x + beside.v, scale);
+          if (beside.count == 3) {
+            return certifiedOrBound(0.0, beside.v.norm(), x, x + beside.v, scale);
+          }
           answer = against_boundary(beside);
         }
       }

@@ -46,7 +46,8 @@ constexpr double kSimplexOrientationRounding = 32 * std::numeric_limits<double>:
 struct HullSimplex {
   int count = 0;                 ///< 1-3 points; 4: y inside a tetrahedron of them
   std::array<int, 4> index{};    ///< the points' indices in the set
-  std::array<Vec3, 4> relative;  ///< point - y
+  /// point - y
+  std::array<Vec3, 4> relative{{Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
   Vec3 v{Vec3::Zero()};          ///< the simplex's point nearest y, minus y
   bool inside() const { return count == 4; }
 };
