@@ -1078,6 +1078,36 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
   }
 }
 
+// A large hull's answers do not depend on whether the thread has built its
+// vertex clusters (from its second query on): each of 300 poses against a
+// fresh copy of the hull (a new address, so a first query, no clusters) gives
+// bit for bit what one kept hull gives. The subdivided cube (98 vertices on a
+// grid) ties along every axis and diagonal, where a support index that
+// depended on the clusters' order would differ.
+TEST(DiskShapeCases, LargeHullAnswersDoNotDependOnItsClusters) {
+  std::shared_ptr<std::vector<Vector3d>> unused;
+  const Transform3d X_WS = at(Vector3d(0.1, -0.2, 0.3), Vector3d(1, 2, 3));
+  std::mt19937_64 rng(61);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  // Every copy stays alive, so that none is built at an address a slot keeps.
+  std::vector<std::shared_ptr<fcl::Convexd>> copies;
+  for (const HullLists& lists : {subdividedCube(4, 0.6), ringHull(8, 16, Vector3d(0.5, 0.4, 0.3))}) {
+    const auto kept = convexOf(lists, &unused);
+    for (int i = 0; i < 300; ++i) {
+      const Vector3d normal =
+          i % 3 == 0 ? Vector3d(0, 0, 1) : Vector3d(unit(rng), unit(rng), unit(rng));
+      const Transform3d X_WD = at(1.2 * Vector3d(unit(rng), unit(rng), unit(rng)), normal);
+      copies.push_back(convexOf(lists, &unused));
+      const auto first = fcl_disk::diskShapeDistance(0.3, X_WD, *copies.back(), X_WS);
+      const auto again = fcl_disk::diskShapeDistance(0.3, X_WD, *kept, X_WS);
+      ASSERT_EQ(first.distance, again.distance) << "pose " << i;
+      ASSERT_EQ(first.lower_bound, again.lower_bound) << "pose " << i;
+      ASSERT_EQ(first.p_W_disk, again.p_W_disk) << "pose " << i;
+      ASSERT_EQ(first.p_W_shape, again.p_W_shape) << "pose " << i;
+    }
+  }
+}
+
 // A hull whose shared vertex list is changed in place, at the same address,
 // answers for its new vertices: its cached geometry (kept, the cache having
 // room for it) is not reused.
