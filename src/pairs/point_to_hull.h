@@ -28,11 +28,11 @@
 namespace fcl_disk {
 namespace internal {
 
-/// The iteration stops when the support point w along -v (v = q - y, q the
-/// simplex's point nearest y) leaves |v|^2 - v.w, which bounds |v|^2 -
-/// dist(y, hull)^2 from above, below this fraction of |v|^2: q's feature no
-/// longer changes then but for ties at rounding, and the caller's
-/// certificate, not this test, decides the answer.
+/// The iteration stops when the support point along -v (v = q - y, q the
+/// simplex's point nearest y), w relative to y, leaves |v|^2 - v.w, which
+/// bounds |v|^2 - dist(y, hull)^2 from above, below this fraction of |v|^2:
+/// q's feature no longer changes then but for ties at rounding, and the
+/// caller's certificate, not this test, decides the answer.
 constexpr double kHullSimplexProgress = 1e-13;
 /// Steps before the iteration gives up on a point set whose rounding makes it
 /// cycle: each step adds a point the simplex did not hold, and the hull's
