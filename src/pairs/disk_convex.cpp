@@ -594,10 +594,10 @@ struct ConvexTarget {
     return std::uint64_t(std::uint32_t(high)) << 32 | std::uint32_t(low);
   }
 
-  /// Every face's edges as (smaller, larger vertex) keys with their face,
-  /// sorted: the faces sharing an edge are adjacent.
-  static std::vector<std::pair<std::uint64_t, int>> sortedFaceEdges(
-      const std::vector<int>& list, const ConvexGeometry& geometry) {
+  /// Every face's edges as (smaller, larger vertex) keys with their face, in
+  /// the faces' order.
+  static std::vector<std::pair<std::uint64_t, int>> faceEdges(const std::vector<int>& list,
+                                                               const ConvexGeometry& geometry) {
     std::vector<std::pair<std::uint64_t, int>> edges;
     edges.reserve(list.size() - geometry.faces.size());  // one per index
     for (std::size_t f = 0; f < geometry.faces.size(); ++f) {
@@ -608,6 +608,12 @@ struct ConvexTarget {
         edges.emplace_back(pairKey(std::min(from, to), std::max(from, to)), int(f));
       }
     }
+    return edges;
+  }
+  /// faceEdges sorted: the faces sharing an edge are adjacent.
+  static std::vector<std::pair<std::uint64_t, int>> sortedFaceEdges(
+      const std::vector<int>& list, const ConvexGeometry& geometry) {
+    std::vector<std::pair<std::uint64_t, int>> edges = faceEdges(list, geometry);
     std::sort(edges.begin(), edges.end());
     return edges;
   }
@@ -618,20 +624,8 @@ struct ConvexTarget {
   /// queried in turn").
   static void buildFaceGraph(const std::vector<int>& list, ConvexGeometry* geometry) {
     const std::vector<ConvexFace>& faces = geometry->faces;
-    struct EdgeUse {
-      std::uint64_t key;  ///< pairKey(smaller vertex, larger vertex)
-      int face;
-    };
-    std::vector<EdgeUse> uses;
-    uses.reserve(list.size() - faces.size());  // one per index
-    for (std::size_t f = 0; f < faces.size(); ++f) {
-      const int* index = &list[faces[f].start];
-      const int count = faces[f].count;
-      for (int i = 0; i < count; ++i) {
-        const int from = index[i], to = index[i + 1 < count ? i + 1 : 0];
-        uses.push_back({pairKey(std::min(from, to), std::max(from, to)), int(f)});
-      }
-    }
+    // Each face's use of an edge: (pairKey(smaller vertex, larger vertex), face).
+    const std::vector<std::pair<std::uint64_t, int>> uses = faceEdges(list, *geometry);
     // The uses grouped by a hash of their edge (a counting sort into at least
     // twice as many slots as uses, linear in the edges): the faces sharing an
     // edge are in one slot, with few other edges there.
@@ -641,12 +635,12 @@ struct ConvexTarget {
       return std::size_t((key * 0x9E3779B97F4A7C15ull) >> (64 - bits));
     };
     std::vector<int> slot_start((std::size_t(1) << bits) + 1, 0);
-    for (const EdgeUse& use : uses) ++slot_start[slot_of(use.key) + 1];
+    for (const auto& use : uses) ++slot_start[slot_of(use.first) + 1];
     for (std::size_t k = 1; k < slot_start.size(); ++k) slot_start[k] += slot_start[k - 1];
-    std::vector<EdgeUse> grouped(uses.size());
+    std::vector<std::pair<std::uint64_t, int>> grouped(uses.size());
     {
       std::vector<int> next(slot_start.begin(), slot_start.end() - 1);
-      for (const EdgeUse& use : uses) grouped[std::size_t(next[slot_of(use.key)]++)] = use;
+      for (const auto& use : uses) grouped[std::size_t(next[slot_of(use.first)]++)] = use;
     }
     // (face, neighbour) for every two faces sharing an edge, both ways.
     std::vector<std::pair<int, int>> pairs;
@@ -654,9 +648,9 @@ struct ConvexTarget {
     for (std::size_t k = 0; k + 1 < slot_start.size(); ++k) {
       for (int a = slot_start[k]; a < slot_start[k + 1]; ++a) {
         for (int b = slot_start[k]; b < slot_start[k + 1]; ++b) {
-          const EdgeUse &use_a = grouped[std::size_t(a)], &use_b = grouped[std::size_t(b)];
-          if (use_a.key == use_b.key && use_a.face != use_b.face) {
-            pairs.emplace_back(use_a.face, use_b.face);
+          const auto &use_a = grouped[std::size_t(a)], &use_b = grouped[std::size_t(b)];
+          if (use_a.first == use_b.first && use_a.second != use_b.second) {
+            pairs.emplace_back(use_a.second, use_b.second);
           }
         }
       }
@@ -1163,6 +1157,26 @@ struct ConvexTraits {
     ConvexTarget<S>::ensureFaces(convex, geometry);
     return ConvexTarget<S>(convex, geometry);
   }
+  /// The pair of a hull vertex `a` (no `b`) or edge from `a` to `b` with the
+  /// disk, certified along itself with the hull's least values (`mismatch` as
+  /// certifiedOrBound's), and its disk point in `next`, the next pass's start;
+  /// a common point where the edge crosses the disk within the rim.
+  template <typename LeastAlong>
+  static LeafToDisk pairWithBoundary(const DiskInShape& disk, LeastAlong&& least_along,
+                                     double scale, double mismatch, const Vec3& a, const Vec3* b,
+                                     Vec3* next) {
+    if (b == nullptr) {
+      *next = disk.point(disk.nearest(a));
+      return certifiedAlongItself(disk, least_along, (a - *next).norm(), *next, a, scale, mismatch);
+    }
+    const SegmentToDisk edge = segmentToDisk(disk, a, *b);
+    *next = edge.p_disk;
+    const LeafToDisk by_edge = certifiedSegmentPair(disk, least_along, edge, scale, mismatch);
+    if (by_edge.exact) return by_edge;
+    if (const auto common = segmentCrossingWithinRim(disk, a, *b)) return meetingAt(disk, *common);
+    return LeafToDisk{};
+  }
+
   /// The polytope by its nearest feature (docs/disk_shape_distance.md,
   /// section 4): found through the face planes (closedFormByFaces) below
   /// kSupportSearchVertexCount vertices, through the vertices' support
@@ -1217,24 +1231,12 @@ struct ConvexTraits {
         return certifiedOrBound(0.0, gap, p, p + simplex.v, scale);
       }
       Vec3 next;
-      // A vertex or an edge of the hull paired with the disk, certified, its
-      // disk point the next pass's start; a common point where the edge
-      // crosses the disk within the rim.
+      // A vertex or an edge of the hull paired with the disk (pairWithBoundary).
       const auto against_boundary = [&](const HullSimplex& feature) {
-        if (feature.count == 1) {
-          const Vec3 v = point(feature.index[0]);
-          next = disk.point(disk.nearest(v));
-          return certified((v - next).norm(), next, v);
-        }
-        const Vec3 a = point(feature.index[0]), b = point(feature.index[1]);
-        const SegmentToDisk edge = segmentToDisk(disk, a, b);
-        next = edge.p_disk;
-        const LeafToDisk by_edge = certifiedSegmentPair(disk, least_along, edge, scale);
-        if (by_edge.exact) return by_edge;
-        if (const auto common = segmentCrossingWithinRim(disk, a, b)) {
-          return meetingAt(disk, *common);
-        }
-        return not_settled;
+        const Vec3 a = point(feature.index[0]);
+        const Vec3 b = point(feature.index[feature.count - 1]);
+        return pairWithBoundary(disk, least_along, scale, 0.0, a, feature.count == 1 ? nullptr : &b,
+                                &next);
       };
       LeafToDisk answer;
       if (simplex.count < 3) {
@@ -1321,26 +1323,17 @@ struct ConvexTraits {
       const auto& [nearest, face_index] = *at;
       last_face = face_index;
       const ConvexFace& face = hull.faces[face_index];
-      // The pair of a vertex or an edge of `face` with the disk, certified, and
-      // its disk point as the next pass's start; a common point where the
-      // edge crosses the disk within the rim.
+      // A vertex or an edge of `face` paired with the disk (pairWithBoundary).
       Vec3 next;
       const auto against_boundary = [&](const typename ConvexTarget<S>::NearestOnFace& at_boundary) {
         if (at_boundary.feature == Feature::vertex) {
-          next = disk.point(disk.nearest(at_boundary.q));
-          return certified((at_boundary.q - next).norm(), next, at_boundary.q);
+          return pairWithBoundary(disk, least_along, scale, hull.supportMismatch(), at_boundary.q,
+                                  nullptr, &next);
         }
         const ConvexEdge& on =
             hull.geometry.edges[std::size_t(hull.detailOf(face).first_edge + at_boundary.index)];
-        const SegmentToDisk edge = segmentToDisk(disk, on.from, on.to);
-        next = edge.p_disk;
-        const LeafToDisk by_edge =
-            certifiedSegmentPair(disk, least_along, edge, scale, hull.supportMismatch());
-        if (by_edge.exact) return by_edge;
-        if (const auto common = segmentCrossingWithinRim(disk, on.from, on.to)) {
-          return meetingAt(disk, *common);
-        }
-        return not_settled;
+        return pairWithBoundary(disk, least_along, scale, hull.supportMismatch(), on.from, &on.to,
+                                &next);
       };
       if (nearest.feature != Feature::face) {
         if (LeafToDisk answer = against_boundary(nearest); answer.exact) return answer;
