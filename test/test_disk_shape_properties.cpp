@@ -8,7 +8,10 @@
 // rigid motion of both poses, and collide agreeing with the distance outside
 // the touching band, with its contact on both shapes and a normal whose
 // translation by the depth separates them. The same in double on 10,000 poses
-// per pair, half of them scaled by 10^x, x in [-98, 98].
+// per pair, half of them scaled by 10^x, x in [-98, 98]. And the same for
+// Convex hulls of 66 to 130 vertices (ring hulls), whose closed form finds
+// their nearest feature by the support search (src/pairs/point_to_hull.h), on
+// 10,000 poses in double and in float and 2,000 at every length scale.
 #include <fcl_disk/fcl_disk.h>
 
 #include <fcl/narrowphase/collision.h>
@@ -25,6 +28,7 @@
 
 #include "disk_shape_fcl.h"
 #include "disk_shape_oracle.h"
+#include "hull_lists.h"
 #include "test_random.h"
 
 namespace {
@@ -55,7 +59,9 @@ struct Tolerance {
   static constexpr double kGapRelative = kFloat ? 1.0 : 1e-12;
 };
 
-Shape randomShape(Kind kind, Random& random) {
+/// A random shape of `kind`; for Kind::convex with `large_hull`, a ring hull
+/// of 8 rings of 8 to 16 points (66 to 130 vertices) with random semi-axes.
+Shape randomShape(Kind kind, Random& random, bool large_hull = false) {
   Shape s;
   s.kind = kind;
   auto length = [&] { return Real(random.uniform(0.05, 0.6)); };
@@ -67,6 +73,14 @@ Shape randomShape(Kind kind, Random& random) {
     case Kind::cone: s.dims = V3(length(), length(), 0); break;
     case Kind::ellipsoid: s.dims = V3(length(), length(), length()); break;
     case Kind::convex: {
+      if (large_hull) {
+        const int around = 8 + int(random.uniform(0.0, 8.999));
+        const fcl_disk_test::HullLists hull = fcl_disk_test::ringHull(
+            8, around, Eigen::Vector3d(double(length()), double(length()), double(length())));
+        for (const Eigen::Vector3d& v : hull.vertices) s.vertices.push_back(v.cast<Real>());
+        s.faces = hull.faces;
+        break;
+      }
       // A random box-like frustum: a rectangle base and a smaller top.
       const Real a = length(), b = length(), h = length(), shrink = Real(random.uniform(0.2, 1.0));
       s.vertices = {V3(-a, -b, -h), V3(a, -b, -h), V3(a, b, -h), V3(-a, b, -h),
@@ -172,16 +186,17 @@ void checkTouchingBand(S r, const fcl::Transform3<S>& X_WD,
 /// `poses` random poses of `kind`, half of them scaled by 10^x, x uniform in
 /// [-max_exponent, max_exponent].
 template <typename S>
-void checkPair(Kind kind, int poses = kPosesPerPair, double max_exponent = 6.0) {
+void checkPair(Kind kind, int poses = kPosesPerPair, double max_exponent = 6.0,
+               bool large_hulls = false) {
   using T = Tolerance<S>;
   Random random(7919 * (int(kind) + 1) + (std::is_same<S, float>::value ? 1 : 0) +
-                int(max_exponent));
+                int(max_exponent) + (large_hulls ? 104729 : 0));
   int separated = 0, intersecting = 0;
   for (int i = 0; i < poses; ++i) {
     const Real k = random.chance(0.5)
                        ? std::pow(Real(10), Real(random.uniform(-max_exponent, max_exponent)))
                        : Real(1);
-    const Shape wanted = scaledShape(randomShape(kind, random), k);
+    const Shape wanted = scaledShape(randomShape(kind, random, large_hulls), k);
     const auto fcl_shape = toFcl<S>(wanted);
     const Shape shape = asStored<S>(wanted, *fcl_shape);
     const S r = S(random.uniform(0.05, 0.8) * double(k));
@@ -262,7 +277,8 @@ void checkPair(Kind kind, int poses = kPosesPerPair, double max_exponent = 6.0) 
     }
   }
   EXPECT_GT(separated, poses / 10) << kindName(kind);
-  std::cout << kindName(kind) << (std::is_same<S, float>::value ? " float" : " double") << ": "
+  std::cout << kindName(kind) << (large_hulls ? " (large hulls)" : "")
+            << (std::is_same<S, float>::value ? " float" : " double") << ": "
             << separated << " separated, " << intersecting << " intersecting\n";
 }
 
@@ -275,6 +291,19 @@ TEST_P(DiskShapeProperties, Float) { checkPair<float>(GetParam()); }
 // and products of lengths must stay normal doubles at every scale.
 TEST_P(DiskShapeProperties, DoubleAtEveryLengthScale) {
   checkPair<double>(GetParam(), kPosesAtEveryLengthScale, 98.0);
+}
+
+// Hulls of 66 to 130 vertices: the Convex closed form's support search.
+constexpr int kLargeHullPoses = 10000;
+constexpr int kLargeHullPosesAtEveryLengthScale = 2000;
+TEST(DiskLargeHullProperties, Double) {
+  checkPair<double>(Kind::convex, kLargeHullPoses, 6.0, /*large_hulls=*/true);
+}
+TEST(DiskLargeHullProperties, Float) {
+  checkPair<float>(Kind::convex, kLargeHullPoses, 6.0, /*large_hulls=*/true);
+}
+TEST(DiskLargeHullProperties, DoubleAtEveryLengthScale) {
+  checkPair<double>(Kind::convex, kLargeHullPosesAtEveryLengthScale, 98.0, /*large_hulls=*/true);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryPrimitive, DiskShapeProperties,
