@@ -49,7 +49,9 @@
 // Hull contacts: disk_hull_contacts/<N>/<disk|flat_cylinder_libccd>/double,
 // fcl::collide asking for one contact (its exact penetration depth for the
 // disk, libccd's EPA for the flat cylinder) on 256 intersecting poses of the
-// hull of disk_convex_hulls/<N>.
+// hull of disk_convex_hulls/<N>. disk_large_hull_contacts_in_turn/<N>/<...>/double:
+// the same on 1024 hulls of N random points in turn, one intersecting pose
+// each (hulls a thread does not keep, as disk_large_hulls_in_turn).
 //
 // Hulls in turn: disk_hulls_in_turn/<H>/<variant>/double, H Convex hulls of
 // 40 random points on the sphere of radius 0.45, the pool's case k against
@@ -377,6 +379,21 @@ const Pool<double>& largeHullsInTurnPool(int vertex_count) {
   return *pool;
 }
 
+/// A random pose of the disk and one of `hull`, drawn until they intersect.
+void addIntersectingCase(const std::shared_ptr<fcl::CollisionGeometry<double>>& hull,
+                         fcl_disk_test::Random& random, Pool<double>* cases) {
+  const auto& convex = *static_cast<const fcl::Convex<double>*>(hull.get());
+  while (true) {
+    const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
+    const fcl::Transform3<double> X_WS = dsc::detail::randomPose(random);
+    if (fcl_disk::diskShapeIntersect(double(dsc::kDiskRadius), X_WD, convex, X_WS,
+                                     static_cast<fcl_disk::DiskContact<double>*>(nullptr))) {
+      addHullCase(X_WD, hull, X_WS, cases);
+      return;
+    }
+  }
+}
+
 /// kContactCases random poses of a disk and hullPool(vertex_count)'s hull
 /// (the same hull) that intersect, for the contact benchmarks.
 const Pool<double>& contactCases(int vertex_count) {
@@ -385,16 +402,26 @@ const Pool<double>& contactCases(int vertex_count) {
   if (!cases) {
     const auto hull = std::const_pointer_cast<fcl::CollisionGeometry<double>>(
         hullPool(vertex_count).shape[0]->collisionGeometry());
-    const auto& convex = *static_cast<const fcl::Convex<double>*>(hull.get());
     fcl_disk_test::Random random(kSeed + 31 * std::uint64_t(vertex_count));
     cases = std::make_unique<Pool<double>>();
-    while (cases->disk.size() < kContactCases) {
-      const fcl::Transform3<double> X_WD = dsc::detail::randomPose(random);
-      const fcl::Transform3<double> X_WS = dsc::detail::randomPose(random);
-      if (fcl_disk::diskShapeIntersect(double(dsc::kDiskRadius), X_WD, convex, X_WS,
-                                       static_cast<fcl_disk::DiskContact<double>*>(nullptr))) {
-        addHullCase(X_WD, hull, X_WS, cases.get());
-      }
+    while (cases->disk.size() < kContactCases) addIntersectingCase(hull, random, cases.get());
+  }
+  return *cases;
+}
+
+/// One intersecting pose for each of kLargeHullsInTurn hulls of `vertex_count`
+/// random points on a sphere, queried in turn: contacts on hulls a thread
+/// does not keep.
+const Pool<double>& largeHullContactCases(int vertex_count) {
+  static std::vector<std::unique_ptr<Pool<double>>> all(std::size(kLargeHullSizes));
+  auto& cases = all[slotOf(kLargeHullSizes, vertex_count)];
+  if (!cases) {
+    fcl_disk_test::Random random(kSeed + 613 * std::uint64_t(vertex_count));
+    cases = std::make_unique<Pool<double>>();
+    for (int h = 0; h < kLargeHullsInTurn; ++h) {
+      const std::shared_ptr<fcl::CollisionGeometry<double>> hull =
+          dsc::makeShape<double>(dsc::detail::sphereHull(vertex_count, random));
+      addIntersectingCase(hull, random, cases.get());
     }
   }
   return *cases;
@@ -402,13 +429,12 @@ const Pool<double>& contactCases(int vertex_count) {
 
 /// fcl::collide with one contact asked (its depth and normal) on the
 /// intersecting cases in turn: the disk, or the flat cylinder under libccd's EPA.
-void benchHullContacts(benchmark::State& state, int vertex_count, bool flat_cylinder) {
-  const Pool<double>& cases = contactCases(vertex_count);
+void benchHullContacts(benchmark::State& state, const Pool<double>& cases, bool flat_cylinder) {
   const fcl::CollisionRequest<double> request(1, /*enable_contact=*/true);
   std::size_t i = 0;
   double depths = 0.0;
   for (auto _ : state) {
-    const std::size_t k = i++ % kContactCases;
+    const std::size_t k = i++ % cases.disk.size();
     fcl::CollisionResult<double> result;
     fcl::collide((flat_cylinder ? cases.flat_cylinder : cases.disk)[k].get(), cases.shape[k].get(),
                  request, result);
@@ -443,7 +469,16 @@ void registerHulls() {
       const std::string name = "disk_hull_contacts/" + std::to_string(vertex_count) + "/" +
                                (flat_cylinder ? "flat_cylinder_libccd" : "disk") + "/double";
       benchmark::RegisterBenchmark(name.c_str(), [vertex_count, flat_cylinder](benchmark::State& st) {
-        benchHullContacts(st, vertex_count, flat_cylinder);
+        benchHullContacts(st, contactCases(vertex_count), flat_cylinder);
+      });
+    }
+  }
+  for (const int vertex_count : kLargeHullSizes) {
+    for (const bool flat_cylinder : {false, true}) {
+      const std::string name = "disk_large_hull_contacts_in_turn/" + std::to_string(vertex_count) +
+                               "/" + (flat_cylinder ? "flat_cylinder_libccd" : "disk") + "/double";
+      benchmark::RegisterBenchmark(name.c_str(), [vertex_count, flat_cylinder](benchmark::State& st) {
+        benchHullContacts(st, largeHullContactCases(vertex_count), flat_cylinder);
       });
     }
   }

@@ -135,10 +135,9 @@ struct ConvexEdge {
 /// its largest face.
 struct ConvexGeometry {
   bool valid = false;  ///< ConvexTraits::valid's verdict on the lists
-  /// Whether the faces, their planes, flatness, largest face, thickness and
-  /// graph are computed: with the rest for hulls below
-  /// kSupportSearchVertexCount vertices, else when a query first needs them
-  /// (ConvexTarget::ensureFaces).
+  /// Whether the faces, their planes, flatness, largest face and thickness
+  /// are computed: with the rest for hulls below kSupportSearchVertexCount
+  /// vertices, else when a query first needs them (ConvexTarget::ensureFaces).
   bool has_faces = false;
   std::vector<ConvexFace> faces;
   /// The faces' edges and triangle projections, appended as queries reach
@@ -166,11 +165,14 @@ struct ConvexGeometry {
   Eigen::Matrix<double, Eigen::Dynamic, 3> clustered_points;
   std::vector<int> cluster_order;
   /// Faces sharing an edge, face f's from face_neighbours[neighbour_start[f]]
-  /// to before [neighbour_start[f + 1]] (hulls of kClimbingFaceCount faces or more).
-  std::vector<int> neighbour_start, face_neighbours;
+  /// to before [neighbour_start[f + 1]] (hulls of kClimbingFaceCount faces or
+  /// more): built by the first climb (ConvexTarget::climbToHighestPlane), so
+  /// that a hull whose faces only a contact's candidates read (a large hull,
+  /// found by its vertices) does not build it.
+  mutable std::vector<int> neighbour_start, face_neighbours;
   /// Faces whose normals are extreme along +-x, +-y, +-z: where a climb on
   /// the face graph starts, the one whose plane is farthest from the point.
-  std::array<int, 6> climb_starts{};
+  mutable std::array<int, 6> climb_starts{};
   int largest_face = -1;  ///< the face of largest area
   bool flat = true;       ///< every face parallel or of zero area: a polygon
   double bounding_radius = 0.0;  ///< the largest vertex norm
@@ -488,8 +490,8 @@ struct ConvexTarget {
     if (!geometry.has_faces) computeFaces(shape, &const_cast<ConvexGeometry&>(geometry));
   }
 
-  /// ConvexGeometry's faces, planes, flatness, largest face, thickness and
-  /// face graph, for valid lists.
+  /// ConvexGeometry's faces, planes, flatness, largest face and thickness,
+  /// for valid lists.
   static void computeFaces(const fcl::Convex<S>& shape, ConvexGeometry* geometry_out) {
     ConvexGeometry& geometry = *geometry_out;
     const fcl::Vector3<S>* const vertices = shape.getVertices().data();
@@ -540,7 +542,6 @@ struct ConvexTarget {
       geometry.planes(f, 2) = unit.z(), geometry.planes(f, 3) = offset;
       at += count + 1;
     }
-    if (faces.size() >= kClimbingFaceCount) buildFaceGraph(list, &geometry);
     geometry.has_faces = true;
   }
 
@@ -622,7 +623,7 @@ struct ConvexTarget {
   /// ascending order) and the climb's start faces. Linear in the edges, since
   /// a hull not kept computes it on every query (docs/performance.md, "Hulls
   /// queried in turn").
-  static void buildFaceGraph(const std::vector<int>& list, ConvexGeometry* geometry) {
+  static void buildFaceGraph(const std::vector<int>& list, const ConvexGeometry* geometry) {
     const std::vector<ConvexFace>& faces = geometry->faces;
     // Each face's use of an edge: (pairKey(smaller vertex, larger vertex), face).
     const std::vector<std::pair<std::uint64_t, int>> uses = faceEdges(list, *geometry);
@@ -960,6 +961,7 @@ struct ConvexTarget {
   /// whose plane height of y no neighbour exceeds (usually, not always, the
   /// farthest plane: nearestOverFaces proves what it finds).
   int climbToHighestPlane(const Vec3& y, int start) const {
+    if (geometry.neighbour_start.empty()) buildFaceGraph(convex->getFaces(), &geometry);
     int at = start < 0 ? geometry.climb_starts[0] : start;
     double height = planeHeight(at, y);
     if (start < 0) {
