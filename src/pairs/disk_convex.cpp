@@ -1423,21 +1423,27 @@ struct ConvexTraits {
           near_gap >= 0.0 ? std::sqrt(height * height + near_gap * near_gap) + rho : -kInfinity;
       const double far_bound =
           std::sqrt(height * height + (disk.r + length) * (disk.r + length)) + rho;
-      if (orthonormal_disk && near_bound > bound && far_bound > bound) continue;
+      // Each of the two is skipped on its own bound.
+      const bool near_cannot_beat = orthonormal_disk && near_bound > bound;
+      const bool far_cannot_beat = orthonormal_disk && far_bound > bound;
+      if (near_cannot_beat && far_cannot_beat) continue;
       FeaturePointBound<Search> bounded{disk, s_point, *directions, geometry.probes};
       const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
-      for (const Vec3& offset : {rim_offset, Vec3(-rim_offset)}) {
+      for (const bool nearest : {true, false}) {
+        if (nearest ? near_cannot_beat : far_cannot_beat) continue;
+        const Vec3 offset = nearest ? rim_offset : Vec3(-rim_offset);
         const Vec3 w = disk.c + offset - bounded.point;
         bounded.push_one(offset.dot(w) >= 0.0 ? w : Vec3(-w));
       }
     }
     for (const ConvexHullEdge& edge : hull_edges) {
-      const Vec3 from = vertex(edge.from), along = vertex(edge.to) - from;
-      const double length = ConvexTarget<S>::safeNorm(along);
-      if (!(length > 0.0)) continue;
+      const Vec3 from = vertex(edge.from);
       if (edgeArcCannotBeat(edge, disk, orthonormal_disk, from, directions->pruningBound())) {
         continue;
       }
+      const Vec3 along = vertex(edge.to) - from;
+      const double length = ConvexTarget<S>::safeNorm(along);
+      if (!(length > 0.0)) continue;
       FeaturePointBound<Search> bounded{disk, from, *directions, geometry.probes};
       addEdgeLineCandidates(disk, from, along / length, &bounded);
     }
