@@ -1481,6 +1481,7 @@ struct ConvexTraits {
       }
       search.push_one(w);
     }
+    /// w and -w, each skipped on its own bound.
     void push_back(const Vec3& w) {
       const double length = w.norm();
       const double bound = search.pruningBound();
@@ -1488,9 +1489,9 @@ struct ConvexTraits {
         const Vec3 unit = w / length;
         const auto [least, most] = extentAlong(unit);
         const double rho = search.inflation();
-        if (disk.support(unit) - least + rho > bound && disk.support(-unit) + most + rho > bound) {
-          return;
-        }
+        if (!(disk.support(unit) - least + rho > bound)) search.push_one(w);
+        if (!(disk.support(-unit) + most + rho > bound)) search.push_one(-w);
+        return;
       }
       search.push_back(w);
     }
