@@ -129,6 +129,9 @@ class SeparationSearch {
   void push_one(const Vec3& w) { consider(w); }
   /// Whether candidates that cannot beat pruningBound() may be skipped.
   bool prunes() const { return prune_slack_ >= 0.0; }
+  /// The slack of pruningBound() (>= 0 when prunes()): above the pair's
+  /// distance, which is within the touching tolerance when it prunes.
+  double pruneSlack() const { return prune_slack_; }
   /// A depth no skipped candidate could reach: infinite until a positive depth
   /// is found (the minimiser of a pair that shares a point has depth >= 0).
   double pruningBound() const {

@@ -1408,9 +1408,15 @@ struct ConvexTraits {
     // h_disk(w) = w.b, so F(w) >= w.(b - s) + rho = +-|b - s| + rho: + for the
     // farthest, and for the nearest where s's foot lies within the rim.
     // (The decomposition b - s = (r - |radial|) radial / |radial| - height n
-    // needs orthonormal axes; else only the probes bound.)
+    // needs orthonormal axes; else only the probes bound.) The nearest with
+    // s's foot outside the rim has the - sign: F = rho - |b - s| there if s is
+    // the hull's support, a separation by |b - s| - rho; for a pair that
+    // shares a point (to within the touching tolerance, under the pruning
+    // slack) beyond that slack, s is not the support there, so the direction
+    // is no stationary point of F and is skipped.
     const bool orthonormal_disk = isOrthonormal(disk);
     constexpr double kInfinity = std::numeric_limits<double>::infinity();
+    const double separating_gap = directions->prunes() ? directions->pruneSlack() : kInfinity;
     for (Eigen::Index i = 0; i < target.points.rows(); ++i) {
       const Vec3 s_point = vertex(int(i));
       const Vec3 from_centre = s_point - disk.c;
@@ -1419,12 +1425,14 @@ struct ConvexTraits {
       if (!(length > 0.0)) continue;
       const double height = from_centre.dot(disk.n), bound = directions->pruningBound();
       const double near_gap = disk.r - length;  // the nearest rim point's, along the radial
-      const double near_bound =
-          near_gap >= 0.0 ? std::sqrt(height * height + near_gap * near_gap) + rho : -kInfinity;
+      const double near_distance = std::sqrt(height * height + near_gap * near_gap);
+      const double near_bound = near_gap >= 0.0 ? near_distance + rho : -kInfinity;
       const double far_bound =
           std::sqrt(height * height + (disk.r + length) * (disk.r + length)) + rho;
       // Each of the two is skipped on its own bound.
-      const bool near_cannot_beat = orthonormal_disk && near_bound > bound;
+      const bool near_cannot_beat =
+          orthonormal_disk && (near_bound > bound ||
+                               (near_gap < 0.0 && near_distance - rho > separating_gap));
       const bool far_cannot_beat = orthonormal_disk && far_bound > bound;
       if (near_cannot_beat && far_cannot_beat) continue;
       FeaturePointBound<Search> bounded{disk, s_point, *directions, geometry.probes};
