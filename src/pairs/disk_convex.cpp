@@ -1504,6 +1504,7 @@ struct ConvexTraits {
       search.push_back(w);
     }
     bool prunes() const { return search.prunes(); }
+    double pruneSlack() const { return search.pruneSlack(); }
     double pruningBound() const { return search.pruningBound(); }
     double inflation() const { return search.inflation(); }
   };

@@ -76,6 +76,10 @@ struct EdgeArcsThatCanBeatBound {
 /// b - x = (PD - offset) w with x on the line (the Lagrange condition on the
 /// circle w . e = 0), so PD - offset = |b - x| where b is farther than the
 /// offset from the line (EdgeArcsThatCanBeatBound).
+/// Where w is within this (cosine) of normal to the disk, its two signs'
+/// support points nearly tie, and an edge line's candidate keeps both.
+constexpr double kSupportSignTie = 1e-9;
+
 template <typename Search>
 void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e,
                            Search* directions, double offset = 0.0) {
@@ -88,10 +92,32 @@ void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e
   E.C[2] = disk.r * e_u * e_v;
   E.S[2] = 0.5 * disk.r * (e_v * e_v - e_u * e_u);
   const double size = d.norm() + disk.r;  // bounds |E|'s terms
+  const double rho = offset + directions->inflation();
+  // w (either form) with the sign along which b is the disk's support, where
+  // F(w) = w.(b - x) / |w| + rho: the other sign has the opposite rim point
+  // as its support, not a root, so it is no candidate of this line (w normal
+  // to the disk within kSupportSignTie: both, as the rim points nearly tie).
+  // For a pair that shares a point (pruning), a w where that F is below minus
+  // the slack would separate the sets unless the line is not the shape's
+  // support there: no stationary point of F either.
+  const auto push_supported = [&](const Vec3& w, const Vec3& b, const Vec3& from_line) {
+    const double along_radius = (b - disk.c).dot(w), length = w.norm();
+    if (!(std::abs(along_radius) > kSupportSignTie * disk.r * length)) {
+      directions->push_back(w);
+      return;
+    }
+    const Vec3 supported = along_radius > 0.0 ? w : Vec3(-w);
+    if (directions->prunes() &&
+        supported.dot(from_line) / length + rho < -directions->pruneSlack()) {
+      return;
+    }
+    directions->push_one(supported);
+  };
   const auto visit = [&](double cos_theta, double sin_theta) {
     const Vec3 b = disk.c + disk.r * (cos_theta * disk.u + sin_theta * disk.v);
-    directions->push_back((b - s) - (b - s).dot(e) * e);  // b - x
-    directions->push_back(e.cross(cos_theta * disk.v - sin_theta * disk.u));
+    const Vec3 from_line = (b - s) - (b - s).dot(e) * e;  // b - x
+    push_supported(from_line, b, from_line);
+    push_supported(e.cross(cos_theta * disk.v - sin_theta * disk.u), b, from_line);
   };
   // A search that does not prune has an infinite bound: every arc is kept.
   forEachRootAngle<2>(E, kBernsteinNoise * size, visit,
