@@ -318,14 +318,9 @@ constexpr int kMaxChartCandidates = 2 * kMaxIntervals + 2 * kPolyDegree;
 /// (false: no wanted root lies there, whatever the coefficients say), and
 /// those wider than may_hold.split_wider_than are halved before they are
 /// decided, so that the test sees intervals small enough to rule out.
-/// `quarters`, where that is narrower than 1 (so [-1, 1] and its halves are
-/// split untested for their coefficients anyway): bit q set when the quarter
-/// [-1 + q/2, -1/2 + q/2] passed may_hold (the caller tested it); the search
-/// starts from those quarters, as the halving would reach them, and leaves
-/// out the rest, without testing any of them again.
 template <int N, typename IntervalTest>
 int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
-                 const IntervalTest& may_hold, unsigned quarters = 0) {
+                 const IntervalTest& may_hold) {
   Polynomial<N> dp{}, ddp{};
   for (int j = 0; j < N; ++j) dp[j] = (j + 1) * p[j + 1];
   for (int j = 0; j + 1 < N; ++j) ddp[j] = (j + 1) * dp[j + 1];
@@ -348,7 +343,6 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
     double lo, hi;
     int depth;
     bool has_b;  ///< false: split for the arc test only, b not formed yet
-    bool tested = false;  ///< may_hold already true (a caller's quarter)
   };
   std::array<Interval, kMaxSubdivisions + 2> stack;
   int size = 0, examined = 0;
@@ -369,19 +363,7 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
   // Intervals wider than may_hold.split_wider_than are split before they are
   // decided, so that the test sees intervals small enough to rule out; their
   // halves get their coefficients only if they pass it.
-  if (quarters != 0 && may_hold.split_wider_than < 1.0) {
-    // Right to left on the stack: the leftmost quarter is examined first, as
-    // the halving examines them. The budget counts the three intervals the
-    // halving pops before the first quarter.
-    for (int q = 3; q >= 0; --q) {
-      if (quarters & (1u << q)) {
-        stack[size++] = {{}, -1.0 + 0.5 * q, -0.5 + 0.5 * q, 2, false, true};
-      }
-    }
-    examined = 3;
-  } else {
-    stack[size++] = {{}, -1.0, 1.0, 0, false};
-  }
+  stack[size++] = {{}, -1.0, 1.0, 0, false};
   while (size > 0) {
     // In place: the slot is reused only by the halves pushed last, which
     // read it before they are written (halve copies b and the ends first).
@@ -392,7 +374,7 @@ int rootsOnChart(const Polynomial<N>& p, double noise, double* out,
       add(mid);
       continue;
     }
-    if (!interval.tested && !may_hold(lo, hi)) continue;
+    if (!may_hold(lo, hi)) continue;
     if (hi - lo > may_hold.split_wider_than && depth < kMaxSubdivisions &&
         size + 2 <= int(stack.size())) {
       stack[size++] = {{}, mid, hi, depth + 1, false};
@@ -477,14 +459,14 @@ void forEachRootAngle(const TrigPolynomial& f, double noise, Visit&& visit,
     };
     const ChartTest chart_test{may_hold, sign, 0.5 * ArcTest::split_wider_than};
     // A chart none of whose quarters may hold a root is skipped before its
-    // polynomial is formed; the search starts from those that may.
-    unsigned quarters = 0;
-    for (int quarter = 0; quarter < 4; ++quarter) {
-      if (chart_test(-1.0 + 0.5 * quarter, -0.5 + 0.5 * quarter)) quarters |= 1u << quarter;
+    // polynomial is formed.
+    bool any_quarter = false;
+    for (int quarter = 0; quarter < 4 && !any_quarter; ++quarter) {
+      any_quarter = chart_test(-1.0 + 0.5 * quarter, -0.5 + 0.5 * quarter);
     }
-    if (quarters == 0) continue;
-    const int num = rootsOnChart<2 * Degree>(onChart<Degree>(f, shifted), noise, ts.data(),
-                                             chart_test, quarters);
+    if (!any_quarter) continue;
+    const int num =
+        rootsOnChart<2 * Degree>(onChart<Degree>(f, shifted), noise, ts.data(), chart_test);
     for (int i = 0; i < num; ++i) {
       const double t = ts[i], denominator = 1.0 + t * t;
       visit(sign * (1.0 - t * t) / denominator, sign * 2.0 * t / denominator);
