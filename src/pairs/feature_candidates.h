@@ -54,6 +54,10 @@ struct EdgeArcsThatCanBeatBound {
   }
 };
 
+/// Where w is within this (cosine) of normal to the disk, its two signs'
+/// support points nearly tie, and an edge line's candidate keeps both.
+constexpr double kSupportSignTie = 1e-9;
+
 /// Appends the directions w normal to the line {s + t e} (e unit) at which the
 /// disk's support, restricted to such directions, is stationary: where an edge
 /// is the shape's support (w . e = 0), F(w) = h_disk(w) - s.w, and its
@@ -64,8 +68,8 @@ struct EdgeArcsThatCanBeatBound {
 /// a trigonometric polynomial of degree 2 (every root, trig_roots.h), and
 /// w = b - x, which is also e x b' (w is normal to both). Both are appended:
 /// e x b' knows w to the root's accuracy where b is near the line (a vertex
-/// on the rim, a touching pair) and b - x where e is nearly along b'. With
-/// d = c - s, a = d.e:
+/// on the rim, a touching pair) and b - x where e is nearly along b', each
+/// with the sign along which b is the disk's support. With d = c - s, a = d.e:
 ///   E = (a e.v - d.v) cos + (d.u - a e.u) sin + r (e.u)(e.v) cos 2theta
 ///       + r ((e.v)^2 - (e.u)^2)/2 sin 2theta   (b' taken for r = 1).
 ///
@@ -76,10 +80,6 @@ struct EdgeArcsThatCanBeatBound {
 /// b - x = (PD - offset) w with x on the line (the Lagrange condition on the
 /// circle w . e = 0), so PD - offset = |b - x| where b is farther than the
 /// offset from the line (EdgeArcsThatCanBeatBound).
-/// Where w is within this (cosine) of normal to the disk, its two signs'
-/// support points nearly tie, and an edge line's candidate keeps both.
-constexpr double kSupportSignTie = 1e-9;
-
 template <typename Search>
 void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e,
                            Search* directions, double offset = 0.0) {
