@@ -1402,47 +1402,30 @@ struct ConvexTraits {
       FeaturePointBound<Search>{disk, vertex(target.list[face.start]), *directions, geometry.probes}
           .push_one(-face.unit_normal);
     }
-    // A vertex s's candidates (addVertexCandidates): w along b - s for the rim
-    // points b nearest and farthest s, with the sign whose disk support point
-    // is b ((b - c) . w > 0), where F(w) = h_disk(w) - w.s is stationary. There
-    // h_disk(w) = w.b, so F(w) >= w.(b - s) + rho = +-|b - s| + rho: + for the
-    // farthest, and for the nearest where s's foot lies within the rim.
-    // (The decomposition b - s = (r - |radial|) radial / |radial| - height n
-    // needs orthonormal axes; else only the probes bound.) The nearest with
-    // s's foot outside the rim has the - sign: F = rho - |b - s| there if s is
-    // the hull's support, a separation by |b - s| - rho; for a pair that
-    // shares a point (to within the touching tolerance, under the pruning
-    // slack) beyond that slack, s is not the support there, so the direction
-    // is no stationary point of F and is skipped.
+    // A vertex s's one candidate (addVertexCandidates: F's other critical
+    // points through a vertex are no minima): where s's foot lies outside the
+    // rim, w along s - b for its nearest rim point b, where F(w) = rho - |b - s|
+    // if s is the hull's support there. For a pair that shares a point (to
+    // within the touching tolerance, under the pruning slack), F < -slack would
+    // separate the sets: s is not the support there, and the direction no
+    // stationary point of F. (|b - s|^2 = height^2 + (|radial| - r)^2 needs
+    // orthonormal axes; else nothing is skipped.)
     const bool orthonormal_disk = isOrthonormal(disk);
-    constexpr double kInfinity = std::numeric_limits<double>::infinity();
-    const double separating_gap = directions->prunes() ? directions->pruneSlack() : kInfinity;
+    const double separating_gap = orthonormal_disk && directions->prunes()
+                                      ? directions->pruneSlack()
+                                      : std::numeric_limits<double>::infinity();
     for (Eigen::Index i = 0; i < target.points.rows(); ++i) {
       const Vec3 s_point = vertex(int(i));
       const Vec3 from_centre = s_point - disk.c;
       const Vec2 radial = disk.inPlane(from_centre);
-      const double length = radial.norm();
-      if (!(length > 0.0)) continue;
-      const double height = from_centre.dot(disk.n), bound = directions->pruningBound();
-      const double near_gap = disk.r - length;  // the nearest rim point's, along the radial
-      const double near_distance = std::sqrt(height * height + near_gap * near_gap);
-      const double near_bound = near_gap >= 0.0 ? near_distance + rho : -kInfinity;
-      const double far_bound =
-          std::sqrt(height * height + (disk.r + length) * (disk.r + length)) + rho;
-      // Each of the two is skipped on its own bound.
-      const bool near_cannot_beat =
-          orthonormal_disk && (near_bound > bound ||
-                               (near_gap < 0.0 && near_distance - rho > separating_gap));
-      const bool far_cannot_beat = orthonormal_disk && far_bound > bound;
-      if (near_cannot_beat && far_cannot_beat) continue;
-      FeaturePointBound<Search> bounded{disk, s_point, *directions, geometry.probes};
+      const double length_squared = radial.squaredNorm();
+      if (!(length_squared > disk.r * disk.r)) continue;  // the foot within the rim
+      const double length = std::sqrt(length_squared), height = from_centre.dot(disk.n);
+      const double near_gap = length - disk.r;
+      if (std::sqrt(height * height + near_gap * near_gap) - rho > separating_gap) continue;
       const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
-      for (const bool nearest : {true, false}) {
-        if (nearest ? near_cannot_beat : far_cannot_beat) continue;
-        const Vec3 offset = nearest ? rim_offset : Vec3(-rim_offset);
-        const Vec3 w = disk.c + offset - bounded.point;
-        bounded.push_one(offset.dot(w) >= 0.0 ? w : Vec3(-w));
-      }
+      FeaturePointBound<Search>{disk, s_point, *directions, geometry.probes}.push_one(
+          from_centre - rim_offset);
     }
     for (const ConvexHullEdge& edge : hull_edges) {
       const Vec3 from = vertex(edge.from);

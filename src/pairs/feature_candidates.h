@@ -17,20 +17,26 @@
 namespace fcl_disk {
 namespace internal {
 
-/// Appends the directions b - s from the rim points b nearest and farthest a
-/// vertex s: where the vertex is the shape's support, F(w) = h_disk(w) - s.w,
-/// stationary where the disk's support point b has b - s along w, i.e. b - s
-/// normal to the rim tangent. A vertex on the disk's axis has every rim point
-/// at one distance; there the disk's normals (always candidates) give the
-/// least F, as the foot of s on the disk's plane is its nearest disk point.
+/// Appends the direction where F can have a local minimum through a vertex s
+/// (docs/penetration_depth.md, section 7): where s is the shape's support,
+/// F(w) = h_disk(w) - s.w + rho is h_K(w) + rho for K = disk - s, stationary
+/// on the sphere where K's support point b - s is lambda w, lambda = h_K(w),
+/// b a rim point (b - s normal to the rim tangent: the rim points nearest and
+/// farthest s) or w = +-n (the disk's normals, always candidates). Along the
+/// sphere's direction in the plane of w and n, h_K is linear, so its curvature
+/// there is -lambda: a critical point with lambda > 0 is no minimum. Only the
+/// nearest rim point with s's foot outside the rim has lambda = -|b - s| < 0,
+/// along s - b (the sign whose disk support point is b). A vertex on the
+/// disk's axis has every rim point at one distance; there the disk's normals
+/// give the least F.
 template <typename Search>
 void addVertexCandidates(const DiskInShape& disk, const Vec3& s, Search* directions) {
   const Vec2 radial = disk.inPlane(s - disk.c);
-  const double length = radial.norm();
-  if (!(length > 0.0)) return;
+  const double length_squared = radial.squaredNorm();
+  if (!(length_squared > disk.r * disk.r)) return;  // the foot within the rim
+  const double length = std::sqrt(length_squared);
   const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
-  directions->push_back(disk.c + rim_offset - s);  // nearest rim point minus s
-  directions->push_back(disk.c - rim_offset - s);  // farthest
+  directions->push_one(s - (disk.c + rim_offset));  // s minus its nearest rim point
 }
 
 /// Arcs of the disk's rim where an edge line's candidate can beat the search's
