@@ -1402,31 +1402,12 @@ struct ConvexTraits {
       FeaturePointBound<Search>{disk, vertex(target.list[face.start]), *directions, geometry.probes}
           .push_one(-face.unit_normal);
     }
-    // A vertex s's one candidate (addVertexCandidates: F's other critical
-    // points through a vertex are no minima): where s's foot lies outside the
-    // rim, w along s - b for its nearest rim point b, where F(w) = rho - |b - s|
-    // if s is the hull's support there. For a pair that shares a point (to
-    // within the touching tolerance, under the pruning slack), F < -slack would
-    // separate the sets: s is not the support there, and the direction no
-    // stationary point of F. (|b - s|^2 = height^2 + (|radial| - r)^2 needs
-    // orthonormal axes; else nothing is skipped.)
-    const bool orthonormal_disk = isOrthonormal(disk);
-    const double separating_gap = orthonormal_disk && directions->prunes()
-                                      ? directions->pruneSlack()
-                                      : std::numeric_limits<double>::infinity();
+    // A vertex's one candidate (addVertexCandidates), bounded by the probes.
     for (Eigen::Index i = 0; i < target.points.rows(); ++i) {
-      const Vec3 s_point = vertex(int(i));
-      const Vec3 from_centre = s_point - disk.c;
-      const Vec2 radial = disk.inPlane(from_centre);
-      const double length_squared = radial.squaredNorm();
-      if (!(length_squared > disk.r * disk.r)) continue;  // the foot within the rim
-      const double length = std::sqrt(length_squared), height = from_centre.dot(disk.n);
-      const double near_gap = length - disk.r;
-      if (std::sqrt(height * height + near_gap * near_gap) - rho > separating_gap) continue;
-      const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
-      FeaturePointBound<Search>{disk, s_point, *directions, geometry.probes}.push_one(
-          from_centre - rim_offset);
+      FeaturePointBound<Search> bounded{disk, vertex(int(i)), *directions, geometry.probes};
+      addVertexCandidates(disk, bounded.point, &bounded);
     }
+    const bool orthonormal_disk = isOrthonormal(disk);
     for (const ConvexHullEdge& edge : hull_edges) {
       const Vec3 from = vertex(edge.from);
       if (edgeArcCannotBeat(edge, disk, orthonormal_disk, from, directions->pruningBound())) {

@@ -17,6 +17,16 @@
 namespace fcl_disk {
 namespace internal {
 
+/// Whether a candidate w at which F would be `value` (rho included) if its
+/// feature were the shape's support there is no stationary point of F: for a
+/// pair the search knows to share a point (it prunes, to within the touching
+/// tolerance, under its slack) every F(w) >= -slack, so a lower value would
+/// separate the sets, and the feature is not the support at w.
+template <typename Search>
+bool wouldSeparate(const Search& directions, double value) {
+  return directions.prunes() && value < -directions.pruneSlack();
+}
+
 /// Appends the direction where F can have a local minimum through a vertex s
 /// (docs/penetration_depth.md, section 7): where s is the shape's support,
 /// F(w) = h_disk(w) - s.w + rho is h_K(w) + rho for K = disk - s, stationary
@@ -26,9 +36,10 @@ namespace internal {
 /// sphere's direction in the plane of w and n, h_K is linear, so its curvature
 /// there is -lambda: a critical point with lambda > 0 is no minimum. Only the
 /// nearest rim point with s's foot outside the rim has lambda = -|b - s| < 0,
-/// along s - b (the sign whose disk support point is b). A vertex on the
-/// disk's axis has every rim point at one distance; there the disk's normals
-/// give the least F.
+/// along s - b (the sign whose disk support point is b), where F = rho -
+/// |b - s| if s is the support: skipped where that would separate the sets
+/// (wouldSeparate). A vertex on the disk's axis has every rim point at one
+/// distance; there the disk's normals give the least F.
 template <typename Search>
 void addVertexCandidates(const DiskInShape& disk, const Vec3& s, Search* directions) {
   const Vec2 radial = disk.inPlane(s - disk.c);
@@ -36,7 +47,15 @@ void addVertexCandidates(const DiskInShape& disk, const Vec3& s, Search* directi
   if (!(length_squared > disk.r * disk.r)) return;  // the foot within the rim
   const double length = std::sqrt(length_squared);
   const Vec3 rim_offset = (disk.r / length) * (radial.x() * disk.u + radial.y() * disk.v);
-  directions->push_one(s - (disk.c + rim_offset));  // s minus its nearest rim point
+  const Vec3 w = s - (disk.c + rim_offset);  // s minus its nearest rim point
+  // F = rho - |w| there if s were the support (b the disk's support point
+  // along w, for orthonormal axes): wouldSeparate's test, F < -slack, is
+  // |w| > rho + slack, compared squared.
+  if (directions->prunes() && disk.hasOrthonormalAxes()) {
+    const double margin = directions->inflation() + directions->pruneSlack();
+    if (w.squaredNorm() > margin * margin) return;
+  }
+  directions->push_one(w);
 }
 
 /// Arcs of the disk's rim where an edge line's candidate can beat the search's
@@ -103,9 +122,7 @@ void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e
   // F(w) = w.(b - x) / |w| + rho: the other sign has the opposite rim point
   // as its support, not a root, so it is no candidate of this line (w normal
   // to the disk within kSupportSignTie: both, as the rim points nearly tie).
-  // For a pair that shares a point (pruning), a w where that F is below minus
-  // the slack would separate the sets unless the line is not the shape's
-  // support there: no stationary point of F either.
+  // Skipped where that F would separate the sets (wouldSeparate).
   const auto push_supported = [&](const Vec3& w, const Vec3& b, const Vec3& from_line) {
     const double along_radius = (b - disk.c).dot(w), length = w.norm();
     if (!(std::abs(along_radius) > kSupportSignTie * disk.r * length)) {
@@ -113,10 +130,7 @@ void addEdgeLineCandidates(const DiskInShape& disk, const Vec3& s, const Vec3& e
       return;
     }
     const Vec3 supported = along_radius > 0.0 ? w : Vec3(-w);
-    if (directions->prunes() &&
-        supported.dot(from_line) / length + rho < -directions->pruneSlack()) {
-      return;
-    }
+    if (wouldSeparate(*directions, supported.dot(from_line) / length + rho)) return;
     directions->push_one(supported);
   };
   const auto visit = [&](double cos_theta, double sin_theta) {
