@@ -205,6 +205,16 @@ constexpr bool kHasClosedForm = false;
 template <typename Traits>
 constexpr bool kHasClosedForm<Traits, std::void_t<decltype(&Traits::closedForm)>> = true;
 
+/// Whether a Traits class says, per shape, that intersect() asked for no
+/// contact decides by its closed form before the early exit:
+///   static bool closedFormDecidesFirst(const Shape&);
+/// for a shape whose closed form costs less than the early exit's bound.
+template <typename Traits, typename = void>
+constexpr bool kHasClosedFormFirst = false;
+template <typename Traits>
+constexpr bool
+    kHasClosedFormFirst<Traits, std::void_t<decltype(&Traits::closedFormDecidesFirst)>> = true;
+
 /// Each pair specialises this for its shape class (src/pairs/disk_<shape>.cpp)
 /// with static distance() and intersect() matching diskShapeDistance /
 /// diskShapeIntersect; GenericDiskShapePair implements both for pairs solved by
@@ -324,11 +334,18 @@ struct GenericDiskShapePair {
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
     const DiskAndShapePoseCheck poses = checkDiskAndShapePose(radius, X_WD, X_WS);
     if (!poses.valid || !Traits::valid(shape)) return false;
-    FrameContact in_shape_frame;
-    if (!intersectInShapeFrame(solvedDiskInShape(radius, X_WD, X_WS, poses.orthonormal), shape,
-                               contact ? &in_shape_frame : nullptr)) {
-      return false;
+    const DiskInShape disk = solvedDiskInShape(radius, X_WD, X_WS, poses.orthonormal);
+    if constexpr (kHasClosedFormFirst<Traits>) {
+      if (contact == nullptr && Traits::closedFormDecidesFirst(shape)) {
+        const double scale = disk.r + Traits::boundingRadius(shape) + disk.c.norm();
+        DiskShapeSolution closed;
+        if (closedFormSolves(disk, shape, scale, &closed)) {
+          return closed.distance <= kShapeTouchingTolerance * scale;
+        }
+      }
     }
+    FrameContact in_shape_frame;
+    if (!intersectInShapeFrame(disk, shape, contact ? &in_shape_frame : nullptr)) return false;
     if (contact) *contact = contactInWorld<S>(X_WS, in_shape_frame.pos, in_shape_frame.separation);
     return true;
   }

@@ -1154,6 +1154,16 @@ struct ConvexTraits {
     return ConvexTarget<S>::verifiedGeometryOf(convex).bounding_radius;
   }
   static double inflation(const fcl::Convex<S>&) { return 0.0; }
+  /// Where the closed form reads the vertices only (kSupportSearchVertexCount),
+  /// intersect() asked for no contact tries it before the generic early exit,
+  /// which reads the faces' thickness, which a hull not kept would compute its
+  /// faces for. The same verdicts: a pair the early exit calls apart is
+  /// further apart than the touching tolerance, and the closed form decides
+  /// as the generic path's.
+  static bool closedFormDecidesFirst(const fcl::Convex<S>& convex) {
+    return std::size_t(ConvexTarget<S>::verifiedGeometryOf(convex).points.rows()) >=
+           kSupportSearchVertexCount;
+  }
   static ConvexTarget<S> target(const fcl::Convex<S>& convex) {
     const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(convex);
     ConvexTarget<S>::ensureFaces(convex, geometry);
@@ -1526,36 +1536,7 @@ struct ConvexTraits {
 
 template <typename S>
 struct DiskShapePair<fcl::Convex<S>>
-    : GenericDiskShapePair<S, fcl::Convex<S>, ConvexTraits<S>> {
-  using Generic = GenericDiskShapePair<S, fcl::Convex<S>, ConvexTraits<S>>;
-
-  /// The generic intersect(), but where no contact is asked for and the hull's
-  /// closed form reads its vertices only (kSupportSearchVertexCount), that
-  /// closed form decides first: the generic early exit reads the faces'
-  /// thickness, which a hull not kept would compute its faces for. The same
-  /// verdicts: a pair the early exit calls apart is further apart than the
-  /// touching tolerance, and the closed form decides as the generic path's.
-  static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const fcl::Convex<S>& shape,
-                        const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
-    const DiskAndShapePoseCheck poses = checkDiskAndShapePose(radius, X_WD, X_WS);
-    if (!poses.valid || !ConvexTraits<S>::valid(shape)) return false;
-    const DiskInShape disk = Generic::solvedDiskInShape(radius, X_WD, X_WS, poses.orthonormal);
-    const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(shape);
-    if (contact == nullptr && std::size_t(geometry.points.rows()) >= kSupportSearchVertexCount) {
-      const double scale = disk.r + geometry.bounding_radius + disk.c.norm();
-      DiskShapeSolution closed;
-      if (Generic::closedFormSolves(disk, shape, scale, &closed)) {
-        return closed.distance <= kShapeTouchingTolerance * scale;
-      }
-    }
-    FrameContact in_shape_frame;
-    if (!Generic::intersectInShapeFrame(disk, shape, contact ? &in_shape_frame : nullptr)) {
-      return false;
-    }
-    if (contact) *contact = contactInWorld<S>(X_WS, in_shape_frame.pos, in_shape_frame.separation);
-    return true;
-  }
-};
+    : GenericDiskShapePair<S, fcl::Convex<S>, ConvexTraits<S>> {};
 
 }  // namespace internal
 }  // namespace fcl_disk
