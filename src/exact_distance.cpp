@@ -556,8 +556,10 @@ bool rimStepConverging(double r1, double dtheta, double kappa, double psi, doubl
 /// offset2 = r1 R_xy^T radial and offset_height = r1 m2.radial, so a rotation
 /// of radial by (cos, sin) moves y and h by (cos offset2 + r1 sin tangent2,
 /// ...), tangent2 = R_xy^T t and tangent_height = m2.t the images of t =
-/// perp(radial), with no matrix product on the chain. The steps are rimRim's (alongRim's sigma and kappa,
-/// the Cayley rotation); the certificate is tried once the step Newton's
+/// perp(radial), which turn with it: no matrix product on the chain, and the
+/// turn's division beside the next square root (docs/exact_distance.md,
+/// section 4, "The plain path"). The steps are rimRim's (alongRim's sigma and
+/// kappa, the Cayley rotation); the certificate is tried once the step Newton's
 /// quadratic convergence predicts from the last two, dtheta_k^3 /
 /// dtheta_(k-1)^2, would pass rimRim's `converging` test, so a query ends
 /// with the evaluation of its last point and no step it would not take.
@@ -584,20 +586,29 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   const double gap_tolerance = kGapTolerance * scale;
   // The point x = r1 radial in disk 2's frame, y = offset2 + y0 and h =
   // offset_height + h0, with (offset2, offset_height) = r1 (R_xy^T radial,
-  // m2.radial); the unit images of t = perp(radial) are taken from radial at
-  // each step, off the chain.
+  // m2.radial).
   Vec2 radial = *radial_io;
   Vec2 offset2(r1 * (R(0, 0) * radial.x() + R(1, 0) * radial.y()),
                r1 * (R(0, 1) * radial.x() + R(1, 1) * radial.y()));
   double offset_height = r1 * (R(0, 2) * radial.x() + R(1, 2) * radial.y());
+  // The unit images of t = perp(radial), turned with the point.
+  Vec2 tangent2(R(1, 0) * radial.x() - R(0, 0) * radial.y(),
+                R(1, 1) * radial.x() - R(0, 1) * radial.y());
+  double tangent_height = R(1, 2) * radial.x() - R(0, 2) * radial.y();
   Vec2 y = offset2 + y0;
   double h = offset_height + h0;
   // Over disk 2's rim proj_K2 pulls y onto the circle: nearest = to_rim y with
-  // to_rim = r2 / rho, computed as sqrt(rho^2) * (r2 / rho^2) (a square root
-  // and a division side by side); over its face nearest = y (to_rim = 1).
+  // to_rim = r2 / rho, computed as root * ratio, root = sqrt(rho^2) and ratio =
+  // r2 / rho^2 (a square root and a division side by side), whose ratio alone
+  // gives to_rim^2 = r2 ratio; over its face nearest = y (to_rim = 1). The
+  // turn below forms them from rho^2 and r2 times a common factor (the
+  // `rim_scale`): root * ratio and rim_scale r2 * ratio are the same.
   const double rho_squared = y.squaredNorm();
   bool over_face = !(rho_squared > r2 * r2);
-  double to_rim = over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
+  double rim_root = over_face ? 1.0 : std::sqrt(rho_squared);
+  double rim_ratio = over_face ? 1.0 : r2 / rho_squared;
+  double rim_scaled_r2 = over_face ? 1.0 : r2;
+  double to_rim = rim_root * rim_ratio;
   double psi = 0.5 * ((1.0 - to_rim) * (1.0 - to_rim) * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
   const auto converging = [&](double dtheta, double kappa, double psi_at) {
@@ -639,34 +650,41 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
         if (certified()) return answer(step);
       }
     }
-    // alongRim over disk 2's rim, with the unit images of t, arranged so that
-    // to_rim enters each of sigma, outward and kappa once, last: with k = 1 -
-    // to_rim, sigma = k y.t2 + h t_h = (y.t2 + h t_h) - to_rim y.t2, and
-    // r1 (r2 / rho) (y x t2 / rho)^2 = r1 to_rim (to_rim (y x t2) / r2)^2,
-    // whose factors stay of the size of lengths.
-    const Vec2 tangent2(R(1, 0) * radial.x() - R(0, 0) * radial.y(),
-                        R(1, 1) * radial.x() - R(0, 1) * radial.y());
-    const double tangent_height = R(1, 2) * radial.x() - R(0, 2) * radial.y();
+    // alongRim over disk 2's rim, with the unit images of t, over r1
+    // (sigma_hat = sigma / r1, kappa_hat = kappa / r1: ratios at every length
+    // scale, for the turn below), arranged so that the factors of to_rim enter
+    // last: with k = 1 - to_rim,
+    //   sigma_hat = (k y.t2 + h t_h) / r1 = (y.t2 + h t_h) / r1 - root (ratio y.t2 / r1),
+    //   kappa_hat = 1 + max(outward_hat, 0) - to_rim^2 root (ratio (y x t2 / r2)^2),
+    //   outward_hat = to_rim out_rate - out_rest (the multiplier lambda / r1),
+    // and where outward_hat > 0, 1 + outward_hat = (1 - out_rest) + to_rim out_rate:
+    // from the square root to kappa_hat two products and a difference.
     const double y_along = y.dot(tangent2), y_out = y.dot(offset2) * inverse_r1;
     const double h_out = h * offset_height * inverse_r1;
-    const double sigma = over_face ? h * tangent_height
-                                   : (y_along + h * tangent_height) - to_rim * y_along;
-    const double outward = over_face ? -h_out : to_rim * y_out - (y_out + h_out);
+    const double y_along_hat = y_along * inverse_r1;
+    const double out_rate = y_out * inverse_r1, out_rest = (y_out + h_out) * inverse_r1;
     const double across_over_r2 = (y.x() * tangent2.y() - y.y() * tangent2.x()) * inverse_r2;
-    const double across_over_rho = to_rim * across_over_r2;
-    const double kappa =
-        over_face ? r1 * tangent_height * tangent_height + std::max(outward, 0.0)
-                  : (r1 + std::max(outward, 0.0)) -
-                        (r1 * to_rim) * (across_over_rho * across_over_rho);
-    // The Cayley turn by 2 atan(dtheta / 2) over one denominator; r1 sin, the
-    // turn's step in lengths, is taken beside the division.
-    const double half_sigma = 0.5 * sigma;
-    const double denominator = kappa * kappa + half_sigma * half_sigma;
-    if (!(kappa > 0.0 && denominator >= std::numeric_limits<double>::min())) break;
+    const double across_squared = across_over_r2 * across_over_r2;
+    const double to_rim_squared = rim_scaled_r2 * rim_ratio;
+    const double to_rim_out = rim_root * (rim_ratio * out_rate);
+    const double sigma_hat = over_face ? (h * inverse_r1) * tangent_height
+                                       : (y_along_hat + (h * inverse_r1) * tangent_height) -
+                                             rim_root * (rim_ratio * y_along_hat);
+    const double outward_hat = over_face ? -(h_out * inverse_r1) : to_rim_out - out_rest;
+    const double kappa_hat =
+        over_face ? tangent_height * tangent_height + std::max(outward_hat, 0.0)
+                  : (outward_hat > 0.0 ? (1.0 - out_rest) + to_rim_out : 1.0) -
+                        to_rim_squared * (rim_root * (rim_ratio * across_squared));
+    const double outward = r1 * outward_hat;
+    const double sigma = r1 * sigma_hat, kappa = r1 * kappa_hat;
+    // The Cayley turn by 2 atan(dtheta / 2) over one denominator.
+    const double half_sigma_hat = 0.5 * sigma_hat;
+    const double denominator = kappa_hat * kappa_hat + half_sigma_hat * half_sigma_hat;
+    if (!(kappa_hat > 0.0 && denominator >= std::numeric_limits<double>::min())) break;
     // A step beyond kMaxRimStep (far from the optimum, where psi is nearly
     // flat along the rim) is clamped to it, as rimRim clamps it.
-    const bool clamped = !(std::abs(sigma) <= kMaxRimStep * kappa);
-    const double dtheta = clamped ? kMaxRimStep : std::abs(sigma) / kappa;
+    const bool clamped = !(std::abs(sigma_hat) <= kMaxRimStep * kappa_hat);
+    const double dtheta = clamped ? kMaxRimStep : std::abs(sigma_hat) / kappa_hat;
     // Converged along the rim with the gradient pointing inwards: a spurious
     // rim minimum, which rimRim's model step leaves.
     if (outward < 0.0 && converging(dtheta, kappa, psi)) break;
@@ -693,41 +711,74 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
         return answer(step);
       }
     }
-    // The point turned by the Cayley rotation of the step (sigma_step / kappa:
-    // sigma_step = sigma for Newton's step), and psi there.
+    // The point turned by the Cayley rotation of the step (step_sigma_hat /
+    // kappa_hat: sigma_hat for Newton's step), and psi there. The turn is
+    // (cos, sin) = (kappa_hat^2 - step_sigma_hat^2 / 4, -step_sigma_hat
+    // kappa_hat) / step_denominator; the next point's disk-2 coordinates are
+    // first formed times step_denominator, as
+    //   Y = step_denominator y' = kappa_hat (kappa_hat y - r1 step_sigma_hat t2)
+    //       + (step_sigma_hat / 2)^2 (y0 - offset2),
+    // whose |Y| gives to_rim = r2 / rho = r2 step_denominator / |Y| with no
+    // wait for the turn's division: that division and the square root behind
+    // to_rim then run side by side, not one after the other, on the
+    // iteration's latency chain. Where |Y|^2 or (r2 step_denominator)^2 is not
+    // a normal double (a pair at the ends of the range of lengths with a step
+    // denominator far from 1), to_rim is taken from y' itself.
     struct Turned {
       double cos, sin;
-      Vec2 offset2, y;
-      double offset_height, h, to_rim, psi;
+      Vec2 offset2, tangent2, y;
+      double offset_height, tangent_height, h, psi;
+      double rim_root, rim_ratio, rim_scaled_r2, to_rim;
       bool over_face;
     };
-    const auto turnedBy = [&](double step_sigma, double step_denominator) {
+    const auto turnedBy = [&](double step_sigma_hat, double step_denominator) {
       Turned next;
+      const double half_step = 0.5 * step_sigma_hat;
+      const double half_step_squared = half_step * half_step;
+      const double cos_scaled = kappa_hat * kappa_hat - half_step_squared;
+      const double sin_scaled = -(step_sigma_hat * kappa_hat);
+      const double r1_step = r1 * step_sigma_hat;
+      const Vec2 y_scaled = kappa_hat * (kappa_hat * y - r1_step * tangent2) +
+                            half_step_squared * (y0 - offset2);
+      const double y_scaled_squared = y_scaled.squaredNorm();
+      const double r2_scaled = r2 * step_denominator;
       const double inverse = 1.0 / step_denominator;
-      const double half_step_sigma = 0.5 * step_sigma;
-      next.cos = (kappa * kappa - half_step_sigma * half_step_sigma) * inverse;
-      next.sin = -(step_sigma * kappa) * inverse;
-      const double r1_sin = -(r1 * step_sigma * kappa) * inverse;
+      next.cos = cos_scaled * inverse;
+      next.sin = sin_scaled * inverse;
+      const double r1_sin = r1 * next.sin;
       next.offset2 = next.cos * offset2 + r1_sin * tangent2;
       next.offset_height = next.cos * offset_height + r1_sin * tangent_height;
-      // y's own sum, one addition shorter than next.offset2 + y0.
-      next.y = next.cos * offset2 + (r1_sin * tangent2 + y0);
+      // t turns with the point: t' = cos t - sin radial.
+      next.tangent2 = next.cos * tangent2 - next.sin * (offset2 * inverse_r1);
+      next.tangent_height = next.cos * tangent_height - next.sin * (offset_height * inverse_r1);
+      next.y = y_scaled * inverse;
       next.h = next.cos * offset_height + (r1_sin * tangent_height + h0);
       const double rho_squared = next.y.squaredNorm();
-      next.over_face = !(rho_squared > r2 * r2);
-      next.to_rim =
-          next.over_face ? 1.0 : std::sqrt(rho_squared) * (r2 / rho_squared);
+      if (std::isnormal(y_scaled_squared) && std::isnormal(r2_scaled * r2_scaled)) {
+        next.over_face = !(y_scaled_squared > r2_scaled * r2_scaled);
+        next.rim_root = std::sqrt(y_scaled_squared);
+        next.rim_ratio = r2_scaled / y_scaled_squared;
+        next.rim_scaled_r2 = r2_scaled;
+      } else {
+        next.over_face = !(rho_squared > r2 * r2);
+        next.rim_root = std::sqrt(rho_squared);
+        next.rim_ratio = r2 / rho_squared;
+        next.rim_scaled_r2 = r2;
+      }
+      if (next.over_face) next.rim_root = next.rim_ratio = next.rim_scaled_r2 = 1.0;
+      next.to_rim = next.rim_root * next.rim_ratio;
       const double next_k = 1.0 - next.to_rim;
       next.psi = 0.5 * (next_k * next_k * rho_squared + next.h * next.h);
       return next;
     };
-    double step_sigma = sigma;
+    double step_sigma_hat = sigma_hat;
     Turned next;
     if (clamped) {
-      step_sigma = std::copysign(kMaxRimStep * kappa, sigma);
-      next = turnedBy(step_sigma, kappa * kappa + 0.25 * step_sigma * step_sigma);
+      step_sigma_hat = std::copysign(kMaxRimStep * kappa_hat, sigma_hat);
+      next = turnedBy(step_sigma_hat,
+                      kappa_hat * kappa_hat + 0.25 * step_sigma_hat * step_sigma_hat);
     } else {
-      next = turnedBy(sigma, denominator);
+      next = turnedBy(sigma_hat, denominator);
     }
     double step_taken = dtheta;
     if (clamped || !(next.psi < psi)) {
@@ -735,8 +786,9 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       // within the step, e.g. a small disk 2 passed at about its own size):
       // halved, as rimRim halves it, at most kMaxRimHalvings times.
       for (int halving = 0; halving < kMaxRimHalvings && !(next.psi < psi); ++halving) {
-        step_sigma *= 0.5, step_taken *= 0.5;
-        next = turnedBy(step_sigma, kappa * kappa + 0.25 * step_sigma * step_sigma);
+        step_sigma_hat *= 0.5, step_taken *= 0.5;
+        next = turnedBy(step_sigma_hat,
+                        kappa_hat * kappa_hat + 0.25 * step_sigma_hat * step_sigma_hat);
       }
       step_before = 0.0;  // a damped step predicts nothing of the next one
     } else {
@@ -746,7 +798,9 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     radial = Vec2(next.cos * radial.x() - next.sin * radial.y(),
                   next.cos * radial.y() + next.sin * radial.x());
     offset2 = next.offset2, offset_height = next.offset_height;
+    tangent2 = next.tangent2, tangent_height = next.tangent_height;
     y = next.y, h = next.h, over_face = next.over_face;
+    rim_root = next.rim_root, rim_ratio = next.rim_ratio, rim_scaled_r2 = next.rim_scaled_r2;
     to_rim = next.to_rim, psi = next.psi;
     last_step = step_taken;
     last_kappa = kappa;
