@@ -518,6 +518,29 @@ Vec2 scaledFootOfDisk2(const PairInFrame1& pair) {
               pair.s * pair.c.y() - side_r2 * (R(1, 0) * pair.m.x() + R(1, 1) * pair.m.y()));
 }
 
+/// |m|^2 times the projection onto plane 1 of the point of disk 2's chord on
+/// plane 1 nearest c1 (ChordOnPlane1 with its parameter clamped), for s > 0
+/// and disk 2 crossing plane 1, with no square root or division before it
+/// unless the chord's end is the point: with M = |m|^2, E = m_a u + m_b v and
+/// Q = -m_b u + m_a v (u, v disk 2's axes), the chord is c - c_z E / M + tau
+/// Q / s, its point nearest c1 at tau = -c.Q / s (E.Q = 0), so M times that
+/// point is M c - c_z E - (c.Q) Q; past the half-length sqrt(r2^2 - c_z^2 / M)
+/// the chord's end, M c - c_z E - sign(c.Q) sqrt(r2^2 M - c_z^2) Q.
+Vec2 scaledChordPointNearestC1(const PairInFrame1& pair) {
+  const Mat3& R = pair.R;
+  const Vec2& m = pair.m;
+  const double M = m.squaredNorm();
+  const Vec3 E = m.x() * R.col(0) + m.y() * R.col(1);
+  const Vec3 Q = -m.y() * R.col(0) + m.x() * R.col(1);
+  const double c_along = pair.c.dot(Q);
+  const double half_squared_M = pair.r2 * pair.r2 * M - pair.c.z() * pair.c.z();
+  const double tau_M = c_along * c_along <= half_squared_M
+                           ? c_along
+                           : std::copysign(std::sqrt(std::max(0.0, half_squared_M)), c_along);
+  return Vec2(M * pair.c.x() - pair.c.z() * E.x() - tau_M * Q.x(),
+              M * pair.c.y() - pair.c.z() * E.y() - tau_M * Q.y());
+}
+
 /// Where the rim iteration starts (only its speed depends on it; measured in
 /// docs/exact_distance.md, section 4): disk 1's rim point towards where disk 2
 /// comes nearest plane 1, projected: the point of disk 2's chord on plane 1
@@ -530,10 +553,7 @@ Vec2 rimStartDirection(const PairInFrame1& pair) {
   const Vec2 towards_c2(pair.c.x(), pair.c.y());
   if (!(pair.s > kTiltedStart)) return directionOf(towards_c2);
   if (pair.disk2ClearanceOfPlane1() <= 0.0) {  // disk 2 crosses plane 1
-    const internal::ChordOnPlane1 chord = internal::chordOfDisk2OnPlane1(pair);
-    const double tau =
-        std::clamp(chord.tau_nearest_c1, -chord.half_length, chord.half_length);
-    return directionOf(Vec2(chord.X0.x() + tau * chord.T.x(), chord.X0.y() + tau * chord.T.y()));
+    return directionOf(scaledChordPointNearestC1(pair));
   }
   if (pair.disk1ClearanceOfPlane2() <= 0.0) return directionOf(towards_c2);
   return directionOf(scaledFootOfDisk2(pair));  // towards rimPointTowardsPlane1()
