@@ -621,8 +621,8 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   // to_rim = r2 / rho, computed as root * ratio, root = sqrt(rho^2) and ratio =
   // r2 / rho^2 (a square root and a division side by side), whose ratio alone
   // gives to_rim^2 = r2 ratio; over its face nearest = y (to_rim = 1). The
-  // turn below forms them from rho^2 and r2 times a common factor (the
-  // `rim_scale`): root * ratio and rim_scale r2 * ratio are the same.
+  // turn below forms them from rho^2 and r2 times a common factor, kept with
+  // r2 as rim_scaled_r2: to_rim = root * ratio, to_rim^2 = rim_scaled_r2 * ratio.
   const double rho_squared = y.squaredNorm();
   bool over_face = !(rho_squared > r2 * r2);
   double rim_root = over_face ? 1.0 : std::sqrt(rho_squared);
