@@ -676,7 +676,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     // last: with k = 1 - to_rim,
     //   sigma_hat = (k y.t2 + h t_h) / r1 = (y.t2 + h t_h) / r1 - root (ratio y.t2 / r1),
     //   kappa_hat = 1 + max(outward_hat, 0) - to_rim^2 root (ratio (y x t2 / r2)^2),
-    //   outward_hat = to_rim out_rate - out_rest (the multiplier lambda / r1),
+    //   outward_hat = to_rim out_rate - out_rest (the multiplier lambda),
     // and where outward_hat > 0, 1 + outward_hat = (1 - out_rest) + to_rim out_rate:
     // from the square root to kappa_hat two products and a difference.
     const double y_along = y.dot(tangent2), y_out = y.dot(offset2) * inverse_r1;
