@@ -208,7 +208,8 @@ constexpr bool kHasClosedForm<Traits, std::void_t<decltype(&Traits::closedForm)>
 /// Whether a Traits class says, per shape, that intersect() asked for no
 /// contact decides by its closed form before the early exit:
 ///   static bool closedFormDecidesFirst(const Shape&);
-/// for a shape whose closed form costs less than the early exit's bound.
+/// for shapes whose early exit costs more than their closed form (a large
+/// Convex's early exit reads its faces, its closed form only its vertices).
 template <typename Traits, typename = void>
 constexpr bool kHasClosedFormFirst = false;
 template <typename Traits>
