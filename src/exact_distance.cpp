@@ -570,6 +570,25 @@ bool rimStepConverging(double r1, double dtheta, double kappa, double psi, doubl
          0.5 * r1 * kappa * dtheta * dtheta <= std::sqrt(2.0 * psi) * (kGapTolerance * scale);
 }
 
+/// The factors of to_rim = r2 / rho for a point of disk 2's frame at in-plane
+/// distance rho, given rho^2 and r2 times a common factor (`scaled_squared`
+/// = (f rho)^2, `scaled_r2` = f r2, any f > 0): root = f rho and ratio = f r2
+/// / (f rho)^2, a square root and a division side by side, so that to_rim =
+/// root * ratio and to_rim^2 = scaled_r2 * ratio. Over disk 2's face (rho <=
+/// r2) every factor is 1 (to_rim = 1: the point's nearest is itself).
+struct RimFactors {
+  bool over_face;
+  double root, ratio, scaled_r2;
+
+  RimFactors(double scaled_squared, double scaled_r2_in)
+      : over_face(!(scaled_squared > scaled_r2_in * scaled_r2_in)),
+        root(over_face ? 1.0 : std::sqrt(scaled_squared)),
+        ratio(over_face ? 1.0 : scaled_r2_in / scaled_squared),
+        scaled_r2(over_face ? 1.0 : scaled_r2_in) {}
+  double toRim() const { return root * ratio; }
+  double toRimSquared() const { return scaled_r2 * ratio; }
+};
+
 /// Plain Newton along disk 1's rim, the path nearly every rim-rim query
 /// takes to its answer, written as one short chain of arithmetic (the
 /// iteration is latency-bound): x = r1 radial is carried in disk 2's frame as
@@ -618,17 +637,11 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
   Vec2 y = offset2 + y0;
   double h = offset_height + h0;
   // Over disk 2's rim proj_K2 pulls y onto the circle: nearest = to_rim y with
-  // to_rim = r2 / rho, computed as root * ratio, root = sqrt(rho^2) and ratio =
-  // r2 / rho^2 (a square root and a division side by side), whose ratio alone
-  // gives to_rim^2 = r2 ratio; over its face nearest = y (to_rim = 1). The
-  // turn below forms them from rho^2 and r2 times a common factor, kept with
-  // r2 as rim_scaled_r2: to_rim = root * ratio, to_rim^2 = rim_scaled_r2 * ratio.
+  // to_rim = r2 / rho (RimFactors); over its face nearest = y (to_rim = 1).
+  // The turn below forms the factors from rho^2 and r2 times its denominator.
   const double rho_squared = y.squaredNorm();
-  bool over_face = !(rho_squared > r2 * r2);
-  double rim_root = over_face ? 1.0 : std::sqrt(rho_squared);
-  double rim_ratio = over_face ? 1.0 : r2 / rho_squared;
-  double rim_scaled_r2 = over_face ? 1.0 : r2;
-  double to_rim = rim_root * rim_ratio;
+  RimFactors rim(rho_squared, r2);
+  double to_rim = rim.toRim();
   double psi = 0.5 * ((1.0 - to_rim) * (1.0 - to_rim) * rho_squared + h * h);
   double last_step = 0.0, step_before = 0.0, last_kappa = 0.0;
   const auto converging = [&](double dtheta, double kappa, double psi_at) {
@@ -685,17 +698,17 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     const double out_rate = y_out * inverse_r1, out_rest = (y_out + h_out) * inverse_r1;
     const double across_over_r2 = (y.x() * tangent2.y() - y.y() * tangent2.x()) * inverse_r2;
     const double across_squared = across_over_r2 * across_over_r2;
-    const double to_rim_squared = rim_scaled_r2 * rim_ratio;
-    const double to_rim_out = rim_root * (rim_ratio * out_rate);
-    const double sigma_hat = over_face ? (h * inverse_r1) * tangent_height
-                                       : (y_along_hat + (h * inverse_r1) * tangent_height) -
-                                             rim_root * (rim_ratio * y_along_hat);
-    const double outward_hat = over_face ? -(h_out * inverse_r1) : to_rim_out - out_rest;
+    const double to_rim_squared = rim.toRimSquared();
+    const double to_rim_out = rim.root * (rim.ratio * out_rate);
+    const double sigma_hat = rim.over_face
+                                 ? (h * inverse_r1) * tangent_height
+                                 : (y_along_hat + (h * inverse_r1) * tangent_height) -
+                                       rim.root * (rim.ratio * y_along_hat);
+    const double outward_hat = rim.over_face ? -(h_out * inverse_r1) : to_rim_out - out_rest;
     const double kappa_hat =
-        over_face ? tangent_height * tangent_height + std::max(outward_hat, 0.0)
-                  : (outward_hat > 0.0 ? (1.0 - out_rest) + to_rim_out : 1.0) -
-                        to_rim_squared * (rim_root * (rim_ratio * across_squared));
-    const double outward = r1 * outward_hat;
+        rim.over_face ? tangent_height * tangent_height + std::max(outward_hat, 0.0)
+                      : (outward_hat > 0.0 ? (1.0 - out_rest) + to_rim_out : 1.0) -
+                            to_rim_squared * (rim.root * (rim.ratio * across_squared));
     const double sigma = r1 * sigma_hat, kappa = r1 * kappa_hat;
     // The Cayley turn by 2 atan(dtheta / 2) over one denominator.
     const double half_sigma_hat = 0.5 * sigma_hat;
@@ -707,7 +720,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
     const double dtheta = clamped ? kMaxRimStep : std::abs(sigma_hat) / kappa_hat;
     // Converged along the rim with the gradient pointing inwards: a spurious
     // rim minimum, which rimRim's model step leaves.
-    if (outward < 0.0 && converging(dtheta, kappa, psi)) break;
+    if (outward_hat < 0.0 && converging(dtheta, kappa, psi)) break;
     if (converging(dtheta, kappa, psi)) {
       const double distance = std::sqrt(2.0 * psi);
       if (!lower && certified()) return answer(step);
@@ -748,8 +761,7 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       double cos, sin;
       Vec2 offset2, tangent2, y;
       double offset_height, tangent_height, h, psi;
-      double rim_root, rim_ratio, rim_scaled_r2, to_rim;
-      bool over_face;
+      RimFactors rim{0.0, 0.0};
     };
     const auto turnedBy = [&](double step_sigma_hat, double step_denominator) {
       Turned next;
@@ -774,20 +786,10 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
       next.y = y_scaled * inverse;
       next.h = next.cos * offset_height + (r1_sin * tangent_height + h0);
       const double rho_squared = next.y.squaredNorm();
-      if (std::isnormal(y_scaled_squared) && std::isnormal(r2_scaled * r2_scaled)) {
-        next.over_face = !(y_scaled_squared > r2_scaled * r2_scaled);
-        next.rim_root = std::sqrt(y_scaled_squared);
-        next.rim_ratio = r2_scaled / y_scaled_squared;
-        next.rim_scaled_r2 = r2_scaled;
-      } else {
-        next.over_face = !(rho_squared > r2 * r2);
-        next.rim_root = std::sqrt(rho_squared);
-        next.rim_ratio = r2 / rho_squared;
-        next.rim_scaled_r2 = r2;
-      }
-      if (next.over_face) next.rim_root = next.rim_ratio = next.rim_scaled_r2 = 1.0;
-      next.to_rim = next.rim_root * next.rim_ratio;
-      const double next_k = 1.0 - next.to_rim;
+      next.rim = std::isnormal(y_scaled_squared) && std::isnormal(r2_scaled * r2_scaled)
+                     ? RimFactors(y_scaled_squared, r2_scaled)
+                     : RimFactors(rho_squared, r2);
+      const double next_k = 1.0 - next.rim.toRim();
       next.psi = 0.5 * (next_k * next_k * rho_squared + next.h * next.h);
       return next;
     };
@@ -819,9 +821,8 @@ std::optional<Solution> rimNewton(const PairInFrame1& pair, double scale, double
                   next.cos * radial.y() + next.sin * radial.x());
     offset2 = next.offset2, offset_height = next.offset_height;
     tangent2 = next.tangent2, tangent_height = next.tangent_height;
-    y = next.y, h = next.h, over_face = next.over_face;
-    rim_root = next.rim_root, rim_ratio = next.rim_ratio, rim_scaled_r2 = next.rim_scaled_r2;
-    to_rim = next.to_rim, psi = next.psi;
+    y = next.y, h = next.h, rim = next.rim;
+    to_rim = rim.toRim(), psi = next.psi;
     last_step = step_taken;
     last_kappa = kappa;
     *steps = step + 1;
