@@ -50,10 +50,11 @@ void addVertexCandidates(const DiskInShape& disk, const Vec3& s, Search* directi
   const Vec3 w = s - (disk.c + rim_offset);  // s minus its nearest rim point
   // F = rho - |w| there if s were the support (b the disk's support point
   // along w, for orthonormal axes): wouldSeparate's test, F < -slack, is
-  // |w| > rho + slack, compared squared.
-  if (directions->prunes() && disk.hasOrthonormalAxes()) {
+  // |w| > rho + slack, compared squared; the axes' check (three products)
+  // only for the candidates it would skip.
+  if (directions->prunes()) {
     const double margin = directions->inflation() + directions->pruneSlack();
-    if (w.squaredNorm() > margin * margin) return;
+    if (w.squaredNorm() > margin * margin && disk.hasOrthonormalAxes()) return;
   }
   directions->push_one(w);
 }
