@@ -180,19 +180,6 @@ struct DiskInShape {
     const Vec3 unit_u = in_plane * inverseSqrtNearOne(in_plane.squaredNorm());
     return DiskInShape{c, unit_u, unit_n.cross(unit_u), unit_n, r};
   }
-  /// Within this of 1, 1 / sqrt(s) is its Taylor polynomial 1 - e/2 + 3e^2/8
-  /// (e = s - 1), whose error 5|e|^3/16 is then below 4e-16, under double's
-  /// rounding of the axes; float rotations (|e| ~ 1e-7) are all within it.
-  static constexpr double kTaylorInverseSqrtRange = 1e-5;
-  /// 1 / sqrt(s) for s near 1 (squared lengths of axes orthonormal to
-  /// kRotationDefectTolerance), by the Taylor polynomial where it is exact to
-  /// rounding: it keeps a square root and a division off the query's latency
-  /// chain (float disk-box queries ~5% faster than with them).
-  static double inverseSqrtNearOne(double s) {
-    const double e = s - 1.0;
-    return std::abs(e) <= kTaylorInverseSqrtRange ? 1.0 - e * (0.5 - 0.375 * e)
-                                                  : 1.0 / std::sqrt(s);
-  }
 };
 
 /// The disk of radius r and pose X_WD in the frame S of a shape with pose X_WS

@@ -96,13 +96,28 @@ constexpr double kOrthonormalInDouble = 1e-13;
 template <typename S>
 constexpr S kAsGivenRotationTolerance = std::is_same_v<S, double> ? S(kOrthonormalInDouble) : S(-1);
 
+/// Within this of 1, 1 / sqrt(s) is its Taylor polynomial 1 - e/2 + 3e^2/8
+/// (e = s - 1), whose error 5|e|^3/16 is then below 4e-16, under double's
+/// rounding of the axes; float rotations (|e| ~ 1e-7) are all within it.
+constexpr double kTaylorInverseSqrtRange = 1e-5;
+
+/// 1 / sqrt(s) for s near 1 (squared lengths of axes orthonormal to
+/// kRotationDefectTolerance), by the Taylor polynomial where it is exact to
+/// rounding: it keeps a square root and a division off the query's latency
+/// chain when a pose's axes are rebuilt (every query in float).
+inline double inverseSqrtNearOne(double s) {
+  const double e = s - 1.0;
+  return std::abs(e) <= kTaylorInverseSqrtRange ? 1.0 - e * (0.5 - 0.375 * e)
+                                                : 1.0 / std::sqrt(s);
+}
+
 /// The orthonormal frame with R's normal n = R e_z / |R e_z| and R's first axis
 /// made orthogonal to n (Gram-Schmidt), v = n x u.
 inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
   Mat3 frame;
-  frame.col(2) = R.col(2) * (1.0 / std::sqrt(R.col(2).squaredNorm()));
+  frame.col(2) = R.col(2) * inverseSqrtNearOne(R.col(2).squaredNorm());
   const Vec3 u = R.col(0) - frame.col(2).dot(R.col(0)) * frame.col(2);
-  frame.col(0) = u * (1.0 / std::sqrt(u.squaredNorm()));
+  frame.col(0) = u * inverseSqrtNearOne(u.squaredNorm());
   frame.col(1) = frame.col(2).cross(frame.col(0));
   return frame;
 }
