@@ -504,6 +504,42 @@ TEST(RobustnessPoseCheck, TransposedProductMatchesEigen) {
   }
 }
 
+// inverseSqrtNearOne (the normalisations that rebuild a float pose's rotation)
+// agrees with 1 / sqrt to double's rounding on both sides of its Taylor range,
+// and orthonormalFrameWithNormalOf turns float-rounded and perturbed rotations
+// into orthonormal right-handed frames with the rotation's own normal.
+TEST(RobustnessPoseCheck, RebuiltFrameIsOrthonormalWithTheNormalKept) {
+  using fcl_disk::internal::inverseSqrtNearOne;
+  using fcl_disk::internal::kTaylorInverseSqrtRange;
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
+  fcl_disk_test::Random random(20261201);
+  for (int i = 0; i < 20000; ++i) {
+    const double offset = (random.chance(0.5) ? 1.0 : -1.0) *
+                          random.logUniform(1e-17, 100 * kTaylorInverseSqrtRange);
+    const double s = 1.0 + offset;
+    const long double exact = 1.0L / std::sqrt(static_cast<long double>(s));
+    ASSERT_LE(std::abs(static_cast<long double>(inverseSqrtNearOne(s)) - exact), 2 * kEps * exact)
+        << "s = 1 + " << offset;
+  }
+  for (int i = 0; i < 20000; ++i) {
+    Eigen::Matrix3d R = random.rotation();
+    if (i % 2 == 0) {
+      R = R.cast<float>().cast<double>();  // a float pose widened
+    } else {
+      R(int(random.uniform01() * 3), int(random.uniform01() * 3)) +=
+          (random.chance(0.5) ? 1.0 : -1.0) * random.logUniform(1e-12, 1e-4);
+    }
+    const Eigen::Matrix3d F = fcl_disk::internal::orthonormalFrameWithNormalOf(R);
+    const double defect = (F.transpose() * F - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+    ASSERT_LE(defect, 4 * kEps) << R;
+    ASSERT_LE((F.col(2).cross(F.col(0)) - F.col(1)).cwiseAbs().maxCoeff(), 4 * kEps) << R;
+    // The normal is R's, and the first axis lies in the plane of R's first
+    // axis and that normal.
+    ASSERT_LE(F.col(2).cross(R.col(2).normalized()).norm(), 4 * kEps) << R;
+    ASSERT_LE(std::abs(F.col(1).dot(R.col(0))), 4 * kEps * R.col(0).norm()) << R;
+  }
+}
+
 // A reflection (det = -1) maps the local disk onto the same set as the rotation
 // with the opposite third column, so the answers agree.
 TYPED_TEST(Robustness, ReflectedFrameGivesTheSameDistance) {
