@@ -113,7 +113,8 @@ inline double inverseSqrtNearOne(double s) {
 
 /// The orthonormal frame with R's normal n = R e_z / |R e_z| and R's first axis
 /// made orthogonal to n (Gram-Schmidt), v = n x u; both normalised by
-/// inverseSqrtNearOne. test_robustness's RebuiltFrameIsOrthonormalWithTheNormalKept.
+/// inverseSqrtNearOne (checked by test_robustness's
+/// RebuiltFrameIsOrthonormalWithTheNormalKept).
 inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
   Mat3 frame;
   frame.col(2) = R.col(2) * inverseSqrtNearOne(R.col(2).squaredNorm());
