@@ -164,8 +164,7 @@ struct DiskInShape {
   /// rounding), and n' = u' x v'. The plane, hence the disk, is the same; the
   /// three inner products run side by side, so the axes wait on a short chain
   /// of arithmetic and no square root. Others by Gram-Schmidt (u made
-  /// orthogonal to the normal, v = n x u), as the disk-disk solvers rebuild a
-  /// rotation (orthonormalFrameWithNormalOf). Always inlined: every float query
+  /// orthogonal to the normal, v = n x u). Always inlined: every float query
   /// of a closed-form pair runs it, and a call passes both disks through memory
   /// (float disk-box and disk-capsule queries take 47 instructions fewer of
   /// ~1,240 and ~1,050: bench/disk_shape_calls SHAPE float under callgrind).

@@ -111,16 +111,29 @@ inline double inverseSqrtNearOne(double s) {
                                                 : 1.0 / std::sqrt(s);
 }
 
-/// The orthonormal frame with R's normal n = R e_z / |R e_z| and R's first axis
-/// made orthogonal to n (Gram-Schmidt), v = n x u; both normalised by
-/// inverseSqrtNearOne (checked by test_robustness's
-/// RebuiltFrameIsOrthonormalWithTheNormalKept).
+/// An orthonormal right-handed frame whose third axis is R's normal n = R e_z
+/// / |R e_z| (n normalised by inverseSqrtNearOne). A disk is the same set in
+/// every frame with its normal, so the in-plane axes are taken from n alone,
+/// by the branch-free basis of Duff et al. ("Building an orthonormal basis,
+/// revisited", JCGT 6(1), 2017): with sigma = sign(n_z) and a = -1 / (sigma
+/// + n_z) (|sigma + n_z| >= 1),
+///   u = (1 + sigma n_x^2 a, sigma n_x n_y a, -sigma n_x),
+///   v = (n_x n_y a, sigma + n_y^2 a, -n_y),
+/// exact to rounding for a unit n. One division, beside nothing else, and a
+/// few products: R's own first axis, orthogonalised against n and
+/// normalised, would put a second normalisation and a cross product behind
+/// the first on the query's chain (the float disk-disk queries of the report
+/// take 1.09x the time pooled that way: docs/exact_distance.md, section 5).
+/// Checked by test_robustness's RebuiltFrameIsOrthonormalWithTheNormalKept.
 inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
+  const Vec3 n = R.col(2) * inverseSqrtNearOne(R.col(2).squaredNorm());
+  const double sigma = std::copysign(1.0, n.z());
+  const double a = -1.0 / (sigma + n.z());
+  const double b = n.x() * n.y() * a;
   Mat3 frame;
-  frame.col(2) = R.col(2) * inverseSqrtNearOne(R.col(2).squaredNorm());
-  const Vec3 u = R.col(0) - frame.col(2).dot(R.col(0)) * frame.col(2);
-  frame.col(0) = u * inverseSqrtNearOne(u.squaredNorm());
-  frame.col(1) = frame.col(2).cross(frame.col(0));
+  frame.col(0) = Vec3(1.0 + sigma * n.x() * n.x() * a, sigma * b, -sigma * n.x());
+  frame.col(1) = Vec3(b, sigma + n.y() * n.y() * a, -n.y());
+  frame.col(2) = n;
   return frame;
 }
 
