@@ -147,6 +147,18 @@ constexpr int kMaxSecularIterations = 32;
 /// rim) would go to the rim-rim iteration, whose problem is degenerate there.
 constexpr double kFaceSlack = internal::kTouchingTolerance;
 
+/// Disk 2's face counts as parallel to plane 1 for disk 1's face case when its
+/// heights over plane 1, c_z +- r2 s, differ from c_z by at most this many
+/// scene sizes: then the height c_z over any point of the projections'
+/// overlap is the distance to within that, certified by the face height |c_z|
+/// - r2 s to within that, and the tie-break of exactly parallel planes (the
+/// middle of the overlap along the line of centres) applies. Rotations that are parallel in
+/// exact arithmetic but rounded apart (a disk and a copy of it turned about
+/// its normal, in one common frame) have s ~ 1e-16 and would otherwise take
+/// the lowest rim point along the rounding's direction, which lies over disk
+/// 1 or not by chance, and go to the rim iteration when not.
+constexpr double kParallelHeightSpread = 0.5 * kGapTolerance;
+
 /// faceOfDisk2MayHold decides in frame 1 what faceOfDisk1 decides on the
 /// swapped pair, whose axes are the transpose of R: the two differ by a few
 /// eps * scale of rounding, so it passes every pair within this many scene
@@ -182,7 +194,7 @@ std::optional<Solution> faceOfDisk1(const PairInFrame1& pair, double scale) {
   if (!(lowest_height > 0.0)) return std::nullopt;
   const double side = cz > 0.0 ? 1.0 : -1.0;
   Vec3 q;
-  if (pair.s > 0.0) {
+  if (pair.r2 * pair.s > kParallelHeightSpread * scale) {
     q = pair.rimPointTowardsPlane1();
     q.z() = side * lowest_height;  // exact height, free of the rotation's rounding
   } else {
