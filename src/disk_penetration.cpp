@@ -43,6 +43,18 @@ constexpr double kZeroDepth = 8 * std::numeric_limits<double>::epsilon();
 constexpr double kCoincidentRimPoints = 1e-9;
 constexpr double kParallelTangents = 1e-9;
 
+/// A point the disks share (commonPoint) within kSharedPointOnRims of both
+/// rims (scene sizes) is taken as a rim pair of its own
+/// (considerSharedRimPoint): where the rims touch with nearly parallel
+/// tangents, Q has a near-double root there, known only to ~sqrt(eps), and
+/// the pair's directions are PD's to within the shared point's distance from
+/// the rims. Wider than needed costs only the pair's few evaluations of F. It
+/// is sought only when the rim candidates leave a depth of at most
+/// kSharedPointDepth (touching rims have PD 0, and Q's roots miss it by far
+/// less than that), so that deeper overlaps do not pay for the common point.
+constexpr double kSharedPointOnRims = 1e-6;
+constexpr double kSharedPointDepth = 1e-3;
+
 /// The witness of a disk is its support point along +-w unless |P w| is below
 /// this (w within ~1e-9 rad of the disk's normal: the support point is then a
 /// face point, fixed by the other disk's witness).
@@ -176,6 +188,27 @@ class PenetrationSearch {
       consider(e1, &b, &a);
       consider(-e2, &b, &a);
     }
+  }
+
+  /// A point x of both disks that lies within kSharedPointOnRims of both rims,
+  /// taken as the rim pair of its nearest rim points: rims touching at x, a
+  /// critical pair with b = a whose directions (t1 x t2, or the sector's edges
+  /// for parallel tangents) Q's roots give only to the accuracy of a
+  /// near-double root when the tangents are nearly parallel
+  /// (docs/penetration_depth.md, section 2).
+  void considerSharedRimPoint(const Vec3& x) {
+    const double rho1 = std::sqrt(x.x() * x.x() + x.y() * x.y());
+    const Vec3 from_c2 = x - c_;
+    const double along_u = u_.dot(from_c2), along_v = v_.dot(from_c2);
+    const double rho2 = std::sqrt(along_u * along_u + along_v * along_v);
+    if (!(std::abs(rho1 - r1_) <= kSharedPointOnRims &&
+          std::abs(rho2 - r2_) <= kSharedPointOnRims && rho1 > 0.0 && rho2 > 0.0)) {
+      return;
+    }
+    const Vec3 b(r1_ * x.x() / rho1, r1_ * x.y() / rho1, 0.0);
+    const double cos_theta = along_u / rho2, sin_theta = along_v / rho2;
+    const Vec3 e2 = cos_theta * u_ + sin_theta * v_;
+    considerPair(b, c_ + r2_ * e2, -sin_theta * u_ + cos_theta * v_, e2);
   }
 
   /// Newton's method on the critical-pair equations of the rims,
@@ -453,6 +486,9 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped, bool sha
                       : std::numeric_limits<double>::infinity();
   };
   considerRimCandidates(pair, search, shares_point ? &bound : nullptr);
+  if (shares_point && search.bestValue() <= kSharedPointDepth) {
+    if (const auto common = internal::commonPoint(pair)) search.considerSharedRimPoint(*common);
+  }
   search.polishBestRimPair();
   search.polishBestDirection();
   Penetration found = withWitnesses(pair, search.best());

@@ -1523,6 +1523,49 @@ TEST(NearlyParallelPairs, MatchReference) {
   expectPenetrationMatchesReference(cases, "nearly parallel pairs");
 }
 
+// Rims that touch at one point with tangents 1e-8..1 rad apart, the disks on
+// either side of the plane through that point normal to disk 1's radial (PD =
+// 0): Q's root there is a near-double root, known to ~sqrt(eps), and the
+// direction t1 x t2 it gives is off by far more than the 1e-12 promise allows
+// (a fuzz_disk_intersection finding, regression-depth-rims-touching-nearly-tangent,
+// is the first case: depth 2.6e-7 along n1 where F is 1e-17 along t1 x t2).
+TEST(RimsTouchingNearlyTangent, MatchReference) {
+  using Pose = fcl::Transform3d;
+  PosedPairs cases;
+  {
+    Pose A = Pose::Identity(), B = Pose::Identity();
+    B.linear() << -0.79999755860120048, 0.0031249904632859394, -0.59999511720240106,
+        -0.0015624952316429699, -0.9999938965030013, -0.0031249904632859394,
+        -0.60000122069939976, -0.0015624952316429699, 0.79999755860120059;
+    B.translation() << 1.5999938676925824, 0.0023223657178145728, 0.45000218371555556;
+    cases.emplace_back(1.0, A, 0.75, B);
+  }
+  fcl_disk_test::Random rng(kSeed + 83);
+  constexpr int kTouchingCases = 300;
+  while (int(cases.size()) < kTouchingCases) {
+    // In disk 1's frame: the shared rim point p = (1, 0, 0) r1, rim 1's tangent
+    // y, rim 2's tangent t2 turned from it by `turn` about x, and disk 2 on the
+    // far side of x = r1 (its centre along d, d.x > 0, d normal to t2): disk 1
+    // lies in x <= r1, disk 2 in x >= r1, and p is their only common point.
+    const double r1 = rng.uniform(0.3, 2.0), r2 = rng.uniform(0.1, 3.0);
+    const double turn = (rng.chance(0.5) ? 1.0 : -1.0) * rng.logUniform(1e-8, 1.0);
+    const double lean = rng.uniform(-1.4, 1.4);
+    const Eigen::Vector3d t2(0.0, std::cos(turn), std::sin(turn));
+    const Eigen::Vector3d d = std::cos(lean) * Eigen::Vector3d::UnitX() +
+                              std::sin(lean) * Eigen::Vector3d::UnitX().cross(t2);
+    Eigen::Matrix3d local;  // disk 2's axes: -d (towards p), t2, their normal
+    local.col(0) = -d;
+    local.col(1) = t2;
+    local.col(2) = (-d).cross(t2);
+    const Pose motion = Pose(Eigen::Translation3d(rng.inBall(2.0))) * Pose(rng.rotation());
+    Pose A = motion, B = motion;
+    B.linear() = motion.linear() * local;
+    B.translation() = motion * Eigen::Vector3d(r1 * Eigen::Vector3d::UnitX() + r2 * d);
+    cases.emplace_back(r1, A, r2, B);
+  }
+  expectPenetrationMatchesReference(cases, "rims touching nearly tangent");
+}
+
 TEST(InvalidInput, NaNAndNoCrashDouble) { checkInvalidInput<double>(); }
 TEST(InvalidInput, NaNAndNoCrashFloat) { checkInvalidInput<float>(); }
 
