@@ -150,13 +150,13 @@ constexpr double kFaceSlack = internal::kTouchingTolerance;
 /// Disk 2's face counts as parallel to plane 1 for disk 1's face case when its
 /// heights over plane 1, c_z +- r2 s, differ from c_z by at most this many
 /// scene sizes: then the height c_z over any point of the projections'
-/// overlap is the distance to within that, certified by the face height |c_z|
-/// - r2 s to within that, and the tie-break of exactly parallel planes (the
-/// middle of the overlap along the line of centres) applies. Rotations that are parallel in
-/// exact arithmetic but rounded apart (a disk and a copy of it turned about
-/// its normal, in one common frame) have s ~ 1e-16 and would otherwise take
-/// the lowest rim point along the rounding's direction, which lies over disk
-/// 1 or not by chance, and go to the rim iteration when not.
+/// overlap is the distance to within that, certified by the face height
+/// |c_z| - r2 s to within that, and the tie-break of exactly parallel planes
+/// (the middle of the overlap along the line of centres) applies. Poses
+/// parallel in exact arithmetic but rounded apart (a disk and a copy of it
+/// turned about its normal, in one common frame) have s ~ 1e-16 and would
+/// otherwise take the lowest rim point along the rounding's direction, which
+/// lies over disk 1 or not by chance, and go to the rim iteration when not.
 constexpr double kParallelHeightSpread = 0.5 * kGapTolerance;
 
 /// faceOfDisk2MayHold decides in frame 1 what faceOfDisk1 decides on the

@@ -123,7 +123,7 @@ inline double inverseSqrtNearOne(double s) {
 /// few products: R's own first axis, orthogonalised against n and
 /// normalised, would put a second normalisation and a cross product behind
 /// the first on the query's chain (the float disk-disk queries of the report
-/// take 1.09x the time pooled that way: docs/exact_distance.md, section 5).
+/// take 1.10x the time pooled that way: docs/exact_distance.md, section 5).
 /// Checked by test_robustness's RebuiltFrameIsOrthonormalWithTheNormalKept.
 inline Mat3 orthonormalFrameWithNormalOf(const Mat3& R) {
   const Vec3 n = R.col(2) * inverseSqrtNearOne(R.col(2).squaredNorm());

@@ -226,8 +226,8 @@ TEST(ExactCasesDouble, ParallelUpToRoundingTakesTheParallelFaceCase) {
     Eigen::Isometry3d X1 = Eigen::Isometry3d::Identity(), X2 = Eigen::Isometry3d::Identity();
     X1.linear() = random.rotation();
     X1.translation() = random.inBall(2.0);
-    X2.linear() =
-        X1.linear() * Eigen::AngleAxisd(random.uniform(0.0, 2.0 * M_PI), Vec3::UnitZ()).toRotationMatrix();
+    const double spin = random.uniform(0.0, 2.0 * M_PI);
+    X2.linear() = X1.linear() * Eigen::AngleAxisd(spin, Vec3::UnitZ()).toRotationMatrix();
     X2.translation() = X1 * Vec3(offset * along + Vec3(0.0, 0.0, h));
     SCOPED_TRACE(i);
     const auto result = fcl_disk::exactDiskDistance(r1, X1, r2, X2);

@@ -526,7 +526,8 @@ TEST(RobustnessPoseCheck, RebuiltFrameIsOrthonormalWithTheNormalKept) {
     Eigen::Matrix3d R = random.rotation();
     if (i % 4 < 2) {  // a normal within 1e-2 rad of +z or -z, or on it
       const double tilt = i % 8 == 0 ? 0.0 : random.logUniform(1e-17, 1e-2);
-      const double spin = random.uniform(0.0, 2.0 * M_PI), heading = random.uniform(0.0, 2.0 * M_PI);
+      const double spin = random.uniform(0.0, 2.0 * M_PI);
+      const double heading = random.uniform(0.0, 2.0 * M_PI);
       const Eigen::Vector3d tilt_axis(std::cos(heading), std::sin(heading), 0.0);
       R = Eigen::AngleAxisd(spin, Eigen::Vector3d::UnitZ()).toRotationMatrix() *
           Eigen::AngleAxisd(tilt, tilt_axis).toRotationMatrix();
