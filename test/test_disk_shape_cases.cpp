@@ -989,6 +989,44 @@ void checkLargeHull(const HullLists& lists, const char* name, int reference_pose
   }
 }
 
+// Point sets in a plane that is coplanar in exact arithmetic only (a random
+// rotation of z = 0, rounded): every tetrahedron of them is flat, with each
+// point on the others' planes to rounding, on a side rounding picks. A query
+// point off the plane (1e-9 to 1e-2 of the set's size) is never inside one
+// (a fuzz_disk_shapes input had a disk point 3.9e-5 off a hull's side face,
+// two coplanar triangles, taken as common).
+TEST(DiskShapeCases, NearestHullSimplexNeverInsideAFlatSet) {
+  using fcl_disk::internal::HullSimplex;
+  fcl_disk_test::Random random(20261201);
+  for (int trial = 0; trial < 4000; ++trial) {
+    SCOPED_TRACE("trial " + std::to_string(trial));
+    const Eigen::Matrix3d R = random.rotation();
+    const Vector3d origin = random.inBall(1.0);
+    const int n = 4 + trial % 60;
+    std::vector<Vector3d> points;
+    for (int i = 0; i < n; ++i) {
+      const Vector3d in_plane(random.uniform(-1.0, 1.0), random.uniform(-1.0, 1.0), 0.0);
+      points.push_back(origin + R * in_plane);
+    }
+    const Vector3d y = origin + R * Vector3d(random.uniform(-0.8, 0.8), random.uniform(-0.8, 0.8),
+                                             (random.chance(0.5) ? 1.0 : -1.0) *
+                                                 random.logUniform(1e-9, 1e-2));
+    const auto most_along = [&](const Vector3d& w) {
+      int best = 0;
+      for (int i = 1; i < n; ++i) {
+        if (w.dot(points[std::size_t(i)]) > w.dot(points[std::size_t(best)])) best = i;
+      }
+      return best;
+    };
+    const auto point = [&](int i) { return points[std::size_t(i)]; };
+    HullSimplex start;
+    start.count = 1;
+    start.index[0] = trial % n;
+    const HullSimplex simplex = fcl_disk::internal::nearestHullSimplex(y, start, most_along, point);
+    ASSERT_FALSE(simplex.inside());
+  }
+}
+
 TEST(DiskShapeCases, LargeConvexHullsMatchReference) {
   const HullLists rings = ringHull(8, 16, Vector3d(1.2, 0.9, 0.7));
   const HullLists cube = subdividedCube(4, 0.8);

@@ -115,16 +115,22 @@ inline void nearestOnTriangle(HullSimplex* s, int i, int j, int k) {
 }
 
 /// Whether the origin lies on the side of the plane of points i, j, k where
-/// point l lies, beyond the orientation's rounding: only then is that face
-/// left out of the search of a tetrahedron.
+/// point l lies, both beyond their orientation's rounding: only then is that
+/// face left out of the search of a tetrahedron. A flat tetrahedron (four
+/// coplanar vertices: the two triangles of a quadrilateral face) has point l
+/// on every face's plane to rounding, on a side rounding picks; were that
+/// side trusted, the origin off the plane could be found on the inner side of
+/// all four faces, inside a tetrahedron of no volume (a fuzz_disk_shapes
+/// input: a disk point 3.9e-5 off a hull taken as common).
 inline bool clearlyInsideFace(const HullSimplex& s, int i, int j, int k, int l) {
   const Vec3& a = s.relative[i];
-  const Vec3 ab = s.relative[j] - a, ac = s.relative[k] - a;
+  const Vec3 ab = s.relative[j] - a, ac = s.relative[k] - a, al = s.relative[l] - a;
   const Vec3 normal = ab.cross(ac);
-  const double origin_side = -normal.dot(a), point_side = normal.dot(s.relative[l] - a);
-  const double rounding = kSimplexOrientationRounding * a.norm() * ab.norm() * ac.norm();
-  return (origin_side > rounding && point_side > 0.0) ||
-         (origin_side < -rounding && point_side < 0.0);
+  const double origin_side = -normal.dot(a), point_side = normal.dot(al);
+  const double face_size = kSimplexOrientationRounding * ab.norm() * ac.norm();
+  const double origin_rounding = face_size * a.norm(), point_rounding = face_size * al.norm();
+  return (origin_side > origin_rounding && point_side > point_rounding) ||
+         (origin_side < -origin_rounding && point_side < -point_rounding);
 }
 
 /// The point of the tetrahedron of points 0-3 nearest the origin: the nearest
