@@ -420,6 +420,24 @@ long double distanceToSimplex(const std::vector<Eigen::Vector3<long double>>& co
   return std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
 }
 
+/// The support search's simplex of `points` nearest y (nearestHullSimplex,
+/// its support by brute force), from the point of index `start_index`.
+fcl_disk::internal::HullSimplex nearestSimplexOfPoints(const std::vector<Vector3d>& points,
+                                                      const Vector3d& y, int start_index) {
+  const auto most_along = [&](const Vector3d& w) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < points.size(); ++i) {
+      if (w.dot(points[i]) > w.dot(points[best])) best = i;
+    }
+    return int(best);
+  };
+  const auto point = [&](int i) { return points[std::size_t(i)]; };
+  fcl_disk::internal::HullSimplex start;
+  start.count = 1;
+  start.index[0] = start_index;
+  return fcl_disk::internal::nearestHullSimplex(y, start, most_along, point);
+}
+
 // The support search's simplex (src/pairs/point_to_hull.h) against brute force
 // in long double, on 4,000 random point sets of 4 to 123 points and query points
 // y in and around them: the simplex's point q is a point of its simplex; y
@@ -446,18 +464,7 @@ TEST(DiskShapeCases, NearestHullSimplexMatchesBruteForce) {
       points.push_back(x);
     }
     const Vector3d y = 1.5 * Vector3d(unit(rng), unit(rng), unit(rng));
-    const auto most_along = [&](const Vector3d& w) {
-      int best = 0;
-      for (int i = 1; i < n; ++i) {
-        if (w.dot(points[std::size_t(i)]) > w.dot(points[std::size_t(best)])) best = i;
-      }
-      return best;
-    };
-    const auto point = [&](int i) { return points[std::size_t(i)]; };
-    HullSimplex start;
-    start.count = 1;
-    start.index[0] = int(rng() % std::uint64_t(n));
-    const HullSimplex simplex = fcl_disk::internal::nearestHullSimplex(y, start, most_along, point);
+    const HullSimplex simplex = nearestSimplexOfPoints(points, y, int(rng() % std::uint64_t(n)));
     std::vector<V> corners;
     for (int k = 0; k < std::min(simplex.count, 3); ++k) {
       corners.push_back(points[std::size_t(simplex.index[std::size_t(k)])].cast<long double>());
@@ -996,7 +1003,6 @@ void checkLargeHull(const HullLists& lists, const char* name, int reference_pose
 // (a fuzz_disk_shapes input had a disk point 3.9e-5 off a hull's side face,
 // two coplanar triangles, taken as common).
 TEST(DiskShapeCases, NearestHullSimplexNeverInsideAFlatSet) {
-  using fcl_disk::internal::HullSimplex;
   fcl_disk_test::Random random(20261201);
   for (int trial = 0; trial < 4000; ++trial) {
     SCOPED_TRACE("trial " + std::to_string(trial));
@@ -1011,19 +1017,7 @@ TEST(DiskShapeCases, NearestHullSimplexNeverInsideAFlatSet) {
     const Vector3d y = origin + R * Vector3d(random.uniform(-0.8, 0.8), random.uniform(-0.8, 0.8),
                                              (random.chance(0.5) ? 1.0 : -1.0) *
                                                  random.logUniform(1e-9, 1e-2));
-    const auto most_along = [&](const Vector3d& w) {
-      int best = 0;
-      for (int i = 1; i < n; ++i) {
-        if (w.dot(points[std::size_t(i)]) > w.dot(points[std::size_t(best)])) best = i;
-      }
-      return best;
-    };
-    const auto point = [&](int i) { return points[std::size_t(i)]; };
-    HullSimplex start;
-    start.count = 1;
-    start.index[0] = trial % n;
-    const HullSimplex simplex = fcl_disk::internal::nearestHullSimplex(y, start, most_along, point);
-    ASSERT_FALSE(simplex.inside());
+    ASSERT_FALSE(nearestSimplexOfPoints(points, y, trial % n).inside());
   }
 }
 
