@@ -127,8 +127,9 @@ inline bool clearlyInsideFace(const HullSimplex& s, int i, int j, int k, int l) 
   const Vec3 ab = s.relative[j] - a, ac = s.relative[k] - a, al = s.relative[l] - a;
   const Vec3 normal = ab.cross(ac);
   const double origin_side = -normal.dot(a), point_side = normal.dot(al);
-  const double face_size = kSimplexOrientationRounding * ab.norm() * ac.norm();
-  const double origin_rounding = face_size * a.norm(), point_rounding = face_size * al.norm();
+  const double rounding_per_length = kSimplexOrientationRounding * ab.norm() * ac.norm();
+  const double origin_rounding = rounding_per_length * a.norm();
+  const double point_rounding = rounding_per_length * al.norm();
   return (origin_side > origin_rounding && point_side > point_rounding) ||
          (origin_side < -origin_rounding && point_side < -point_rounding);
 }
