@@ -191,24 +191,20 @@ class PenetrationSearch {
   }
 
   /// A point x of both disks that lies within kSharedPointOnRims of both rims,
-  /// taken as the rim pair of its nearest rim points: rims touching at x, a
-  /// critical pair with b = a whose directions (t1 x t2, or the sector's edges
-  /// for parallel tangents) Q's roots give only to the accuracy of a
-  /// near-double root when the tangents are nearly parallel
-  /// (docs/penetration_depth.md, section 2).
+  /// taken as a rim angle of its own (considerRimAngle at x's angle on rim 2):
+  /// rims touching at x make a critical pair with b = a there whose
+  /// directions (t1 x t2, or the sector's edges for parallel tangents) Q's
+  /// roots give only to the accuracy of a near-double root when the tangents
+  /// are nearly parallel (docs/penetration_depth.md, section 2).
   void considerSharedRimPoint(const Vec3& x) {
-    const double rho1 = std::sqrt(x.x() * x.x() + x.y() * x.y());
     const Vec3 from_c2 = x - c_;
     const double along_u = u_.dot(from_c2), along_v = v_.dot(from_c2);
+    const double rho1 = std::sqrt(x.x() * x.x() + x.y() * x.y());
     const double rho2 = std::sqrt(along_u * along_u + along_v * along_v);
-    if (!(std::abs(rho1 - r1_) <= kSharedPointOnRims &&
-          std::abs(rho2 - r2_) <= kSharedPointOnRims && rho1 > 0.0 && rho2 > 0.0)) {
-      return;
+    if (std::abs(rho1 - r1_) <= kSharedPointOnRims && std::abs(rho2 - r2_) <= kSharedPointOnRims &&
+        rho2 > 0.0) {
+      considerRimAngle(along_u / rho2, along_v / rho2);
     }
-    const Vec3 b(r1_ * x.x() / rho1, r1_ * x.y() / rho1, 0.0);
-    const double cos_theta = along_u / rho2, sin_theta = along_v / rho2;
-    const Vec3 e2 = cos_theta * u_ + sin_theta * v_;
-    considerPair(b, c_ + r2_ * e2, -sin_theta * u_ + cos_theta * v_, e2);
   }
 
   /// Newton's method on the critical-pair equations of the rims,
@@ -450,6 +446,14 @@ void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
 
 }
 
+/// For a pair known to share a point, once its rim candidates leave a depth
+/// of at most kSharedPointDepth: the common point as a rim angle of its own
+/// (considerSharedRimPoint).
+void considerSharedPointIfShallow(const PairInFrame1& pair, PenetrationSearch& search) {
+  if (!(search.bestValue() <= kSharedPointDepth)) return;
+  if (const auto common = internal::commonPoint(pair)) search.considerSharedRimPoint(*common);
+}
+
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.
 /// `swapped`: the pair's disk 1 is the caller's disk 2 (the caller negates w),
 /// which only changes the order of the kinks so that the tie-break is the
@@ -486,9 +490,7 @@ Penetration penetrationInFrame1(const PairInFrame1& pair, bool swapped, bool sha
                       : std::numeric_limits<double>::infinity();
   };
   considerRimCandidates(pair, search, shares_point ? &bound : nullptr);
-  if (shares_point && search.bestValue() <= kSharedPointDepth) {
-    if (const auto common = internal::commonPoint(pair)) search.considerSharedRimPoint(*common);
-  }
+  if (shares_point) considerSharedPointIfShallow(pair, search);
   search.polishBestRimPair();
   search.polishBestDirection();
   Penetration found = withWitnesses(pair, search.best());
@@ -509,6 +511,7 @@ void forEachDiskPairPenetrationCandidate(const PairInFrame1& unit_pair,
     search.consider(kink);
   }
   considerRimCandidates(unit_pair, search, bound);
+  if (bound) considerSharedPointIfShallow(unit_pair, search);
   // The polished directions too (consider() passes them on): where F is the
   // caller's, they are its minimiser to rounding.
   search.polishBestRimPair();
