@@ -785,17 +785,23 @@ bool collisionEntryOnlyCallsSlot(const fcl::CollisionRequest<S>& request) {
 }
 
 /// Calls answer(shape) with `geometry` as the shape class of its node type when
-/// a Disk is answered against that type by fcl_disk (section 1b), except
-/// GEOM_CYLINDER (a Disk is one too; FCL's tables tell them apart); returns
-/// whether it did.
+/// a Disk is answered against that type by fcl_disk (section 1b); returns
+/// whether it did. A Disk's node type is GEOM_CYLINDER too, so there only an
+/// fcl::Cylinder itself is answered (its type_info's address, as
+/// asDiskOfThisLibrary compares): every other class of that node type (a Disk
+/// another copy of the library made, a class derived from fcl::Cylinder) goes
+/// to FCL's entry, whose tables tell them apart.
 template <typename S, typename Answer, int... Types>
 bool withDiskPairShape(const CollisionGeometry<S>* geometry, Answer&& answer,
                        std::integer_sequence<int, Types...>) {
   const int node_type = geometry->getNodeType();
   const auto try_type = [&](auto type) {
     constexpr int kType = decltype(type)::value;
-    if constexpr (kHasDiskPair<kType, S> && kType != fcl::GEOM_CYLINDER) {
+    if constexpr (kHasDiskPair<kType, S>) {
       if (node_type != kType) return false;
+      if (kType == fcl::GEOM_CYLINDER && &typeid(*geometry) != &typeid(fcl::Cylinder<S>)) {
+        return false;
+      }
       answer(static_cast<const PairShape<kType, S>&>(*geometry));
       return true;
     } else {

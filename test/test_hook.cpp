@@ -3,7 +3,15 @@
 #include <fcl/broadphase/broadphase_dynamic_AABB_tree.h>
 #include <fcl/broadphase/default_broadphase_callbacks.h>
 #include <fcl/geometry/shape/box.h>
+#include <fcl/geometry/shape/capsule.h>
+#include <fcl/geometry/shape/cone.h>
+#include <fcl/geometry/shape/convex.h>
+#include <fcl/geometry/shape/cylinder.h>
+#include <fcl/geometry/shape/ellipsoid.h>
+#include <fcl/geometry/shape/halfspace.h>
+#include <fcl/geometry/shape/plane.h>
 #include <fcl/geometry/shape/sphere.h>
+#include <fcl/geometry/shape/triangle_p.h>
 #include <fcl/narrowphase/collision.h>
 #include <fcl/narrowphase/distance.h>
 #include <fcl_disk/fcl_disk.h>
@@ -539,7 +547,7 @@ bool sameVector(const fcl::Vector3<S>& a, const fcl::Vector3<S>& b) {
 
 template <typename S>
 struct EntryPair {
-  std::shared_ptr<fcl_disk::Disk<S>> disk1, disk2;
+  std::shared_ptr<fcl::CollisionGeometry<S>> g1, g2;
   fcl::Transform3<S> X1, X2;
   bool overlapping;
 };
@@ -571,16 +579,72 @@ std::vector<EntryPair<S>> entryPairs() {
   return pairs;
 }
 
+/// A Disk against one shape of every node type fcl_disk answers it against (a
+/// real fcl::Cylinder among them), the disk first in one pair and second in the
+/// next, near enough to overlap in about half of them, and a few with a NaN
+/// pose; `overlapping` as fcl::collide through the tables decides it.
+template <typename S>
+std::vector<EntryPair<S>> entryShapePairs() {
+  using V = fcl::Vector3<S>;
+  auto hull_points = std::make_shared<const std::vector<V>>(std::vector<V>{
+      V(0.5, 0, 0), V(-0.2, 0.4, 0.1), V(-0.2, -0.4, 0.1), V(0.1, 0, 0.6), V(0, 0.1, -0.5)});
+  auto hull_faces = std::make_shared<const std::vector<int>>(std::vector<int>{
+      3, 0, 1, 3, 3, 1, 2, 3, 3, 2, 0, 3, 3, 0, 2, 4, 3, 2, 1, 4, 3, 1, 0, 4});
+  const std::vector<std::shared_ptr<fcl::CollisionGeometry<S>>> shapes = {
+      std::make_shared<fcl::Sphere<S>>(S(0.4)),
+      std::make_shared<fcl::Box<S>>(S(0.6), S(0.4), S(0.8)),
+      std::make_shared<fcl::Capsule<S>>(S(0.3), S(0.8)),
+      std::make_shared<fcl::Cylinder<S>>(S(0.4), S(0.7)),
+      std::make_shared<fcl::Cone<S>>(S(0.4), S(0.8)),
+      std::make_shared<fcl::Ellipsoid<S>>(S(0.3), S(0.5), S(0.4)),
+      std::make_shared<fcl::Convex<S>>(hull_points, 6, hull_faces),
+      std::make_shared<fcl::Halfspace<S>>(V(0.3, -0.2, 1).normalized(), S(-0.4)),
+      std::make_shared<fcl::Plane<S>>(V(-0.5, 0.2, 1).normalized(), S(0.3)),
+      std::make_shared<fcl::TriangleP<S>>(V(0.5, 0, 0), V(-0.3, 0.4, 0.1), V(0, -0.5, 0.2))};
+  fcl_disk_test::Random random(4343);
+  std::vector<EntryPair<S>> pairs;
+  for (const auto& shape : shapes) {
+    for (int i = 0; i < 24; ++i) {
+      fcl::Transform3<double> X_disk = fcl::Transform3<double>::Identity(), X_shape = X_disk;
+      X_disk.linear() = random.rotation();
+      X_disk.translation() = random.inBall(1.5);
+      X_shape.linear() = random.rotation();
+      X_shape.translation() = random.inBall(1.5);
+      if (i == 23) X_shape.translation().y() = std::numeric_limits<double>::quiet_NaN();
+      const auto disk = std::make_shared<fcl_disk::Disk<S>>(S(random.uniform(0.3, 1.0)));
+      EntryPair<S> pair = i % 2 == 0
+                              ? EntryPair<S>{disk, shape, X_disk.cast<S>(), X_shape.cast<S>(), false}
+                              : EntryPair<S>{shape, disk, X_shape.cast<S>(), X_disk.cast<S>(), false};
+      fcl::CollisionResult<S> result;
+      pair.overlapping = fcl::collide(pair.g1.get(), pair.X1, pair.g2.get(), pair.X2,
+                                      fcl::CollisionRequest<S>(), result) > 0;
+      pairs.push_back(pair);
+    }
+  }
+  return pairs;
+}
+
+/// entryPairs and entryShapePairs.
+template <typename S>
+std::vector<EntryPair<S>> allEntryPairs() {
+  std::vector<EntryPair<S>> pairs = entryPairs<S>();
+  const std::vector<EntryPair<S>> shape_pairs = entryShapePairs<S>();
+  pairs.insert(pairs.end(), shape_pairs.begin(), shape_pairs.end());
+  return pairs;
+}
+
 // The shortcut answers exactly as FCL's own entry does through the tables
-// (fcl::distance on geometries and poses, which no definition here replaces):
-// every request flag and solver, fresh and carried-over results, including
-// those FCL's entry treats specially (indep, signed, result already negative).
+// (fcl::distance on geometries and poses, which no definition here replaces),
+// for disk pairs and a disk against every shape type it answers, in both
+// orders: every request flag and solver, fresh and carried-over results,
+// including those FCL's entry treats specially (indep, signed, result already
+// negative).
 template <typename S>
 void expectObjectDistanceAsTables() {
   int overlapping = 0;
-  for (const EntryPair<S>& pair : entryPairs<S>()) {
+  for (const EntryPair<S>& pair : allEntryPairs<S>()) {
     overlapping += pair.overlapping;
-    const fcl::CollisionObject<S> a(pair.disk1, pair.X1), b(pair.disk2, pair.X2);
+    const fcl::CollisionObject<S> a(pair.g1, pair.X1), b(pair.g2, pair.X2);
     for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
       for (int flags = 0; flags < 4; ++flags) {
         fcl::DistanceRequest<S> request(flags & 1);
@@ -597,7 +661,7 @@ void expectObjectDistanceAsTables() {
           through_objects.min_distance = through_tables.min_distance = initial;
           const S d_objects = fcl::distance(&a, &b, request, through_objects);
           const S d_tables =
-              fcl::distance(pair.disk1.get(), pair.X1, pair.disk2.get(), pair.X2, request,
+              fcl::distance(pair.g1.get(), pair.X1, pair.g2.get(), pair.X2, request,
                             through_tables);
           SCOPED_TRACE(::testing::Message() << "solver " << solver << " flags " << flags
                                             << " initial " << initial);
@@ -615,7 +679,7 @@ void expectObjectDistanceAsTables() {
       }
     }
   }
-  EXPECT_GT(overlapping, 30);  // overlapping pairs are answered by their common point
+  EXPECT_GT(overlapping, 80);  // overlapping pairs are answered by their common point
 }
 
 template <typename S>
@@ -625,10 +689,10 @@ void expectObjectCollideAsTables() {
     bool contact, cost;
   };
   int colliding = 0;
-  const std::vector<EntryPair<S>> pairs = entryPairs<S>();
+  const std::vector<EntryPair<S>> pairs = allEntryPairs<S>();
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const EntryPair<S>& pair = pairs[i];
-    const fcl::CollisionObject<S> a(pair.disk1, pair.X1), b(pair.disk2, pair.X2);
+    const fcl::CollisionObject<S> a(pair.g1, pair.X1), b(pair.g2, pair.X2);
     for (auto solver : {fcl::GST_LIBCCD, fcl::GST_INDEP}) {
       // num_max_contacts = 0 makes FCL's entry print a warning: one pair does.
       for (Flags flags : {Flags{1, false, false}, Flags{1, true, false}, Flags{4, true, true},
@@ -641,14 +705,14 @@ void expectObjectCollideAsTables() {
         for (bool carried : {false, true}) {
           fcl::CollisionResult<S> through_objects, through_tables;
           if (carried) {
-            const fcl::Contact<S> earlier(pair.disk2.get(), pair.disk1.get(), 7, 8,
+            const fcl::Contact<S> earlier(pair.g2.get(), pair.g1.get(), 7, 8,
                                           fcl::Vector3<S>::Zero(), fcl::Vector3<S>::UnitZ(),
                                           S(0));
             through_objects.addContact(earlier);
             through_tables.addContact(earlier);
           }
           const std::size_t n_objects = fcl::collide(&a, &b, request, through_objects);
-          const std::size_t n_tables = fcl::collide(pair.disk1.get(), pair.X1, pair.disk2.get(),
+          const std::size_t n_tables = fcl::collide(pair.g1.get(), pair.X1, pair.g2.get(),
                                                     pair.X2, request, through_tables);
           SCOPED_TRACE(::testing::Message() << "solver " << solver << " max_contacts "
                                             << flags.max_contacts << " carried " << carried);
@@ -680,7 +744,7 @@ void expectObjectCollideAsTables() {
       }
     }
   }
-  EXPECT_GT(colliding, 30);
+  EXPECT_GT(colliding, 80);
 }
 
 TEST(Hook, ObjectDistanceAnswersAsTheTablesDouble) { expectObjectDistanceAsTables<double>(); }
