@@ -331,6 +331,19 @@ struct GenericDiskShapePair {
     return solution;
   }
 
+  /// The slack under which the candidates of a pair known to share a point
+  /// may be skipped (SeparationSearch): kPrunedCandidateSlack of the scene,
+  /// plus how far the pair's common point `common` (a disk point) may lie
+  /// from the set the depth reads (supportSetDistanceAbove). Every F(w) is at
+  /// least minus the distance of the disk and that set, and so at least
+  /// minus that bound; a Convex whose faces are planar only to rounding finds
+  /// its common point inside its face planes, up to ~their thickness outside
+  /// its vertices' hull.
+  template <typename Target>
+  static double pruneSlack(const Target& target, const Vec3& common, double scale) {
+    return kPrunedCandidateSlack * scale + supportSetDistanceAbove(target, common);
+  }
+
   static bool intersect(S radius, const fcl::Transform3<S>& X_WD, const Shape& shape,
                         const fcl::Transform3<S>& X_WS, DiskContact<S>* contact) {
     const DiskAndShapePoseCheck poses = checkDiskAndShapePose(radius, X_WD, X_WS);
@@ -374,7 +387,8 @@ struct GenericDiskShapePair {
       if (!(closed.distance <= touching)) return false;
       if (contact) {
         contact->pos = 0.5 * (closed.p + closed.q);
-        contact->separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
+        contact->separation =
+            shortestSeparation(target, disk, rho, pruneSlack(target, closed.p, scale));
       }
       return true;
     }
@@ -390,7 +404,7 @@ struct GenericDiskShapePair {
       // of an overlap it left open. Without a separation from overlapLeftOpen
       // the solver proved a common point, so candidates may be skipped.
       if (!separation) {
-        separation = shortestSeparation(target, disk, rho, kPrunedCandidateSlack * scale);
+        separation = shortestSeparation(target, disk, rho, pruneSlack(target, solution.p, scale));
       }
       contact->pos = 0.5 * (solution.p + solution.q);
       contact->separation = *separation;

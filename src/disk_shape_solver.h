@@ -26,6 +26,9 @@
 //   double supportMismatch() const;  // a length >= 0; 0 when not provided
 // The certificate compares the two sets, so it closes at that much more gap,
 // and the answer is exact to it (docs/disk_shape_distance.md, section 4).
+// Such a Target also bounds how far a point it projects onto itself (a common
+// point) lies from the set of its support, which the penetration depth reads:
+//   double supportSetDistanceAbove(const Vec3& x) const;  // >= dist(x, that set)
 // A Target whose frame origin is not its middle (a triangle, a Convex) says
 // where that is, for the intersection test's early exit (apartTowardsCentre):
 //   Vec3 centre() const;  // a point of X; the origin when not provided
@@ -962,6 +965,18 @@ double supportMismatchOf(const Target& target) {
   } else {
     return 0.0;
   }
+}
+
+/// An upper bound of the distance from x to the set of the Target's support:
+/// 0 where its projection and support describe one set (no mismatch), else
+/// its supportSetDistanceAbove(x). A point shared by the disk and the
+/// projection's set is that far at most from a point of the support's set.
+template <typename Target>
+double supportSetDistanceAbove(const Target& target, const Vec3& x) {
+  if constexpr (HasSupportMismatch<Target>::value) {
+    if (target.supportMismatch() > 0.0) return target.supportSetDistanceAbove(x);
+  }
+  return 0.0;
 }
 
 /// Minimises psi(s) = dist(x(s), X)^2 / 2 over the disk |s| <= r by the feasible

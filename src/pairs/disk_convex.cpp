@@ -1041,6 +1041,19 @@ struct ConvexTarget {
   /// disk_shape_solver.h).
   double supportMismatch() const { return face_thickness; }
 
+  /// An upper bound of the distance from x to the hull of the vertices: |x -
+  /// q| for the point q of that hull that the support search
+  /// (nearestHullSimplex) reaches, 0 for x inside a tetrahedron of vertices.
+  double supportSetDistanceAbove(const Vec3& x) const {
+    HullSimplex start;
+    start.count = 1;
+    start.index[0] = supportIndex(x - geometry.centre);
+    const HullSimplex nearest = nearestHullSimplex(
+        x, start, [&](const Vec3& w) { return supportIndex(w); },
+        [&](int index) -> Vec3 { return points.row(index).transpose(); });
+    return nearest.inside() ? 0.0 : nearest.v.norm();
+  }
+
   /// The vertices' mean (the hull's own frame origin may lie anywhere).
   Vec3 centre() const { return geometry.centre; }
 
