@@ -287,33 +287,36 @@ TEST(DiskShapePenetration, CornerOnTheRimFoundByFuzzing) {
   EXPECT_NEAR(double(answer.signed_distance), 0.0, kDepthRelative<float> * scale);
 }
 
-/// Float hulls touching a disk: tapered prisms over an N-gon of an ellipse
-/// (N = 32..63, quadrilateral sides, as fuzz_disk_shapes builds them), whose
-/// sides rounded to float are planar only to ~1e-7 of their size, put against
-/// a disk so that their support along a random direction w meets the disk's,
-/// in float. The shortest separation is then at most F(w) = h_disk(w) +
-/// h_hull(-w) (~0: touching up to float's rounding of the pose): the contact's
-/// depth may not exceed it. The candidates of a pair with a common point
-/// were pruned as if every F were >= -1e-12 of the scene, while the faces'
-/// planes, which found the common point, lie up to their thickness beyond
-/// the vertices' hull that F reads: a hull vertex touching the rim then lost
-/// its edges' candidates (fuzz_disk_shapes, regression-float-hull-vertex-on-rim:
-/// depth 3.2e-6 where F(w) ~ 0, 1e-3 of the scene).
-TEST(DiskShapePenetration, FloatHullTouchingItsSeparationHasNoDepth) {
-  Random rng(20240601 + 97);
+/// Hulls touching a disk whose faces are planar only to float's precision:
+/// tapered prisms over an N-gon of an ellipse (N = 32..63, quadrilateral
+/// sides, as fuzz_disk_shapes builds them) with vertices rounded to float, in
+/// float, and in double with the same vertices, put against a disk so that
+/// their support along a random direction w meets the disk's. The shortest
+/// separation is then at most F(w) = h_disk(w) + h_hull(-w) (~0: touching up
+/// to the rounding of the pose): the contact's depth may not exceed it. The
+/// candidates of a pair with a common point were pruned as if every F were >=
+/// -1e-12 of the scene, while the face planes, which found the common point,
+/// reach beyond the vertices' hull that F reads: a hull vertex touching the
+/// rim then lost its edges' candidates (fuzz_disk_shapes,
+/// regression-float-hull-vertex-on-rim: depth 3.2e-6 where F(w) ~ 0, 1e-3 of
+/// the scene).
+template <typename S>
+void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
+  using V = fcl::Vector3<S>;
+  Random rng(seed);
   int touching = 0;
   for (int trial = 0; trial < 1500; ++trial) {
     const double k = rng.logUniform(1e-4, 1.0);  // every length
     const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
     const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
     const double h = k * rng.uniform(0.02, 1.02), taper = rng.uniform(0.0, 1.0);
-    auto vertices = std::make_shared<std::vector<fcl::Vector3f>>();
+    auto vertices = std::make_shared<std::vector<V>>();
     for (const double z : {-h, h}) {
       const double ring = z < 0 ? 1.0 : taper;
       for (int i = 0; i < n; ++i) {
         const double angle = 2 * M_PI * i / n;
-        vertices->push_back(
-            Vd(ring * a * std::cos(angle), ring * b * std::sin(angle), z).cast<float>());
+        const Vd vertex(ring * a * std::cos(angle), ring * b * std::sin(angle), z);
+        vertices->push_back(vertex.cast<float>().template cast<S>());
       }
     }
     auto faces = std::make_shared<std::vector<int>>();
@@ -325,37 +328,44 @@ TEST(DiskShapePenetration, FloatHullTouchingItsSeparationHasNoDepth) {
       const int next = (i + 1) % n;
       faces->insert(faces->end(), {4, i, next, n + next, n + i});
     }
-    const fcl::Convexf hull(vertices, n + 2, faces);
-    const float r = float(k * rng.uniform(0.02, 1.02));
-    fcl::Transform3f X_WD = fcl::Transform3f::Identity(), X_WS = X_WD;
-    X_WD.linear() = rng.rotation().cast<float>();
-    X_WS.linear() = rng.rotation().cast<float>();
-    // In double from the float data: the disk's rim point and the hull's
+    const fcl::Convex<S> hull(vertices, n + 2, faces);
+    const S r = S(k * rng.uniform(0.02, 1.02));
+    fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
+    X_WD.linear() = rng.rotation().template cast<S>();
+    X_WS.linear() = rng.rotation().template cast<S>();
+    // In double from the data in S: the disk's rim point and the hull's
     // vertex lowest along w meet.
     const Vd w = rng.unitVector();
-    const Eigen::Matrix3d R_D = X_WD.linear().cast<double>(), R_S = X_WS.linear().cast<double>();
+    const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
+    const Eigen::Matrix3d R_S = X_WS.linear().template cast<double>();
     const Vd n_disk = R_D.col(2).normalized();
-    const Vd in_plane = w - w.dot(n_disk) * n_disk;
-    const Vd disk_support = double(r) * in_plane.normalized();  // centre at the origin
+    const Vd disk_support = double(r) * (w - w.dot(n_disk) * n_disk).normalized();
     const auto lowest_vertex = [&](const Vd& along) {
-      Vd lowest = (R_S * (*vertices)[0].cast<double>());
-      for (const fcl::Vector3f& v : *vertices) {
-        const Vd y = R_S * v.cast<double>();
+      Vd lowest = R_S * (*vertices)[0].template cast<double>();
+      for (const V& v : *vertices) {
+        const Vd y = R_S * v.template cast<double>();
         if (y.dot(along) < lowest.dot(along)) lowest = y;
       }
       return lowest;
     };
-    X_WS.translation() = (disk_support - lowest_vertex(w)).cast<float>();
-    const Vd t = X_WS.translation().cast<double>();
+    X_WS.translation() = (disk_support - lowest_vertex(w)).template cast<S>();
+    const Vd t = X_WS.translation().template cast<double>();
     const double F = disk_support.dot(w) - (lowest_vertex(w) + t).dot(w);
-    fcl_disk::DiskContact<float> contact;
+    fcl_disk::DiskContact<S> contact;
     if (!fcl_disk::diskShapeIntersect(r, X_WD, hull, X_WS, &contact)) continue;
     ++touching;
     const double scale = double(r) + Vd(a, b, h).norm() + t.norm();
-    EXPECT_LE(double(contact.penetration_depth), F + kDepthRelative<float> * scale)
+    EXPECT_LE(double(contact.penetration_depth), F + kDepthRelative<S> * scale)
         << "trial " << trial << ": scale " << scale;
   }
   EXPECT_GT(touching, 500);
+}
+
+TEST(DiskShapePenetration, HullsPlanarToFloatTouchingAlongTheirSeparationFloat) {
+  checkHullsTouchingAlongTheirSeparation<float>(20240601 + 97);
+}
+TEST(DiskShapePenetration, HullsPlanarToFloatTouchingAlongTheirSeparationDouble) {
+  checkHullsTouchingAlongTheirSeparation<double>(20240601 + 98);
 }
 
 /// A disk in a perturbed symmetric chain link with the top cap of a thin
