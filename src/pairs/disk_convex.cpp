@@ -1041,16 +1041,28 @@ struct ConvexTarget {
   /// disk_shape_solver.h).
   double supportMismatch() const { return face_thickness; }
 
-  /// An upper bound of the distance from x to the hull of the vertices: |x -
-  /// q| for the point q of that hull that the support search
-  /// (nearestHullSimplex) reaches, 0 for x inside a tetrahedron of vertices.
-  double supportSetDistanceAbove(const Vec3& x) const {
+  /// The support search's start for y: the vertex most towards y from the
+  /// centre.
+  HullSimplex simplexTowards(const Vec3& y) const {
     HullSimplex start;
     start.count = 1;
-    start.index[0] = supportIndex(x - geometry.centre);
-    const HullSimplex nearest = nearestHullSimplex(
-        x, start, [&](const Vec3& w) { return supportIndex(w); },
+    start.index[0] = supportIndex(y - geometry.centre);
+    return start;
+  }
+
+  /// The simplex of vertices whose hull holds y's nearest point of the
+  /// vertices' hull (nearestHullSimplex with their support), from `start`.
+  HullSimplex nearestVertexSimplex(const Vec3& y, const HullSimplex& start) const {
+    return nearestHullSimplex(
+        y, start, [&](const Vec3& w) { return supportIndex(w); },
         [&](int index) -> Vec3 { return points.row(index).transpose(); });
+  }
+
+  /// An upper bound of the distance from x to the hull of the vertices: |x -
+  /// q| for the point q of that hull that the support search reaches, 0 for
+  /// x inside a tetrahedron of vertices.
+  double supportSetDistanceAbove(const Vec3& x) const {
+    const HullSimplex nearest = nearestVertexSimplex(x, simplexTowards(x));
     return nearest.inside() ? 0.0 : nearest.v.norm();
   }
 
@@ -1241,15 +1253,11 @@ struct ConvexTraits {
     const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_hull) {
       return certifiedAlongItself(disk, least_along, upper, p_disk, p_hull, scale);
     };
-    const auto most_along = [&](const Vec3& w) { return hull.supportIndex(w); };
     const auto point = [&](int index) -> Vec3 { return hull.points.row(index).transpose(); };
-    const Vec3& centre = hull.geometry.centre;
-    Vec3 p = disk.point(disk.nearest(centre));
-    HullSimplex simplex;
-    simplex.count = 1;
-    simplex.index[0] = most_along(p - centre);
+    Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
+    HullSimplex simplex = hull.simplexTowards(p);
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
-      simplex = nearestHullSimplex(p, simplex, most_along, point);
+      simplex = hull.nearestVertexSimplex(p, simplex);
       if (simplex.inside()) return meetingAt(p);
       const double gap = simplex.v.norm();
       if (gap <= kShapeGapTolerance * scale) {
