@@ -88,6 +88,40 @@ inline HullLists subdividedCube(int n, double h) {
   return hull;
 }
 
+/// x rounded to float, as a double. Through a volatile float: GCC 12 at -O2
+/// drops the rounding of double(float(a * cos(t))) when it merges cos(t) and
+/// sin(t) into one sincos call, and the hull would stay planar in double.
+inline double roundedToFloat(double x) {
+  volatile float rounded = float(x);
+  return double(rounded);
+}
+
+/// A prism tapered by `taper` (top ring = taper x bottom ring) over the n-gon
+/// inscribed in the ellipse of semi-axes a, b, from z = -h to h, its vertices
+/// rounded to float: quadrilateral sides planar only to float's precision (as
+/// fuzz_disk_shapes builds its hulls), an n-gon at each end.
+inline HullLists floatTaperedPrism(int n, double a, double b, double h, double taper) {
+  HullLists hull;
+  for (const double z : {-h, h}) {
+    const double ring = z < 0 ? 1.0 : taper;
+    for (int i = 0; i < n; ++i) {
+      const double angle = 2 * M_PI * i / n;
+      hull.vertices.push_back(Vector3d(roundedToFloat(ring * a * std::cos(angle)),
+                                       roundedToFloat(ring * b * std::sin(angle)),
+                                       roundedToFloat(z)));
+    }
+  }
+  std::vector<int> bottom, top;
+  for (int i = 0; i < n; ++i) bottom.push_back(n - 1 - i), top.push_back(n + i);
+  hull.faces.push_back(bottom);
+  hull.faces.push_back(top);
+  for (int i = 0; i < n; ++i) {
+    const int next = (i + 1) % n;
+    hull.faces.push_back({i, next, n + next, n + i});
+  }
+  return hull;
+}
+
 /// FCL's face list of `lists`: [k, i_1..i_k, k', ...].
 inline std::shared_ptr<std::vector<int>> faceListOf(const HullLists& lists) {
   auto face_list = std::make_shared<std::vector<int>>();

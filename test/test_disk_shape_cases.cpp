@@ -1551,6 +1551,106 @@ TEST(DiskShapeCases, ConvexWithNonPlanarFacesIsExactToItsThickness) {
   EXPECT_GE(overlapping, 50);
 }
 
+/// The faces' thickness of `lists` as the largest spread of a face's vertices
+/// along its Newell normal (the solver takes its own normals: a spread along a
+/// normal off by an angle a differs by up to a times the face's size, ~the
+/// thickness itself for faces this close to planar).
+double facesThickness(const HullLists& lists) {
+  double thickness = 0.0;
+  for (const auto& face : lists.faces) {
+    Vector3d normal = Vector3d::Zero();
+    for (std::size_t i = 0; i < face.size(); ++i) {
+      const Vector3d& a = lists.vertices[std::size_t(face[i])];
+      const Vector3d& b = lists.vertices[std::size_t(face[(i + 1) % face.size()])];
+      normal += a.cross(b);
+    }
+    normal.normalize();
+    double lowest = std::numeric_limits<double>::infinity(), highest = -lowest;
+    for (const int v : face) {
+      lowest = std::min(lowest, normal.dot(lists.vertices[std::size_t(v)]));
+      highest = std::max(highest, normal.dot(lists.vertices[std::size_t(v)]));
+    }
+    thickness = std::max(thickness, highest - lowest);
+  }
+  return thickness;
+}
+
+/// Hulls whose faces are planar only to float's precision (prisms over a
+/// 32..63-gon, quadrilateral sides, half of them tapered nearly to a point,
+/// vertices rounded to float: thickness delta ~1e-8 of their size), in float
+/// and in double with the same vertices, put beside a disk so that along a
+/// random direction w their vertices' support clears the disk's by G =
+/// 0.01..100 delta. The distance to the vertices' hull is then at least G,
+/// and the answer, exact to delta plus the solver's accuracy
+/// (docs/disk_shape_distance.md, section 4, "Convex"), at least G less that;
+/// a pair intersect() calls touching is within that of distance 0, one it
+/// calls apart at a positive distance.
+template <typename S>
+void checkFloatHullsBesideADisk(std::uint64_t seed) {
+  // The distance's accuracy beyond the thickness: 1e-12 of the scene in
+  // double, a few of float's roundings in float (the pose's rotation is
+  // orthonormal only to that, and the answer is rounded to float).
+  constexpr double kAccuracy =
+      std::is_same<S, float>::value ? 8 * std::numeric_limits<float>::epsilon() : kExact;
+  fcl_disk_test::Random rng(seed);
+  int meetings = 0, within_delta = 0;
+  for (int trial = 0; trial < 1500; ++trial) {
+    const double k = rng.logUniform(1e-4, 1.0);  // every length
+    const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
+    const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
+    const double h = k * rng.uniform(0.02, 1.02), taper = trial % 2 ? rng.uniform(0.0, 1.0) : rng.logUniform(1e-5, 1e-2);
+    const HullLists lists = fcl_disk_test::floatTaperedPrism(n, a, b, h, taper);
+    const double delta = facesThickness(lists);
+    const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
+    const S r = S(k * rng.uniform(0.02, 1.02));
+    fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
+    X_WD.linear() = rng.rotation().template cast<S>();
+    X_WS.linear() = rng.rotation().template cast<S>();
+    // In double from the data in S.
+    const Vector3d w = rng.unitVector();
+    const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
+    const Eigen::Matrix3d R_S = X_WS.linear().template cast<double>();
+    const Vector3d n_disk = R_D.col(2).normalized();
+    const Vector3d disk_support = double(r) * (w - w.dot(n_disk) * n_disk).normalized();
+    const auto lowest_vertex = [&](const Vector3d& along) {
+      Vector3d lowest = R_S * lists.vertices[0];
+      for (const Vector3d& v : lists.vertices) {
+        if ((R_S * v).dot(along) < lowest.dot(along)) lowest = R_S * v;
+      }
+      return lowest;
+    };
+    // Gaps of 0.01..100 thicknesses (or float roundings of the size, where the
+    // faces happen to round planar).
+    const double wanted_gap = std::max(delta, 1e-7 * k) * rng.logUniform(0.01, 100.0);
+    X_WS.translation() = (disk_support - lowest_vertex(w) + wanted_gap * w).template cast<S>();
+    const Vector3d t = X_WS.translation().template cast<double>();
+    const double gap = (lowest_vertex(w) + t).dot(w) - disk_support.dot(w);
+    const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
+    const double scale = double(r) + Vector3d(a, b, h).norm() + t.norm();
+    const double allowed = delta + kAccuracy * scale;
+    meetings += answer.distance == 0;
+    within_delta += gap < 2.0 * delta;
+    EXPECT_GE(double(answer.distance), gap - allowed)
+        << "trial " << trial << ": gap " << gap / delta << " thicknesses, distance "
+        << double(answer.distance) / delta;
+    EXPECT_LE(double(answer.lower_bound), double(answer.distance));
+    // The touching rule: closer than delta + 1e-13 of the scene.
+    const bool intersects = fcl_disk::diskShapeIntersect<S>(r, X_WD, hull, X_WS, nullptr);
+    if (intersects) {
+      EXPECT_LE(double(answer.distance), allowed) << "trial " << trial;
+    } else {
+      EXPECT_GT(double(answer.distance), 0.0) << "trial " << trial;
+    }
+  }
+  std::cout << "  1500 hulls beside a disk: " << meetings << " meetings, " << within_delta
+            << " apart by less than two thicknesses along w\n";
+}
+
+TEST(DiskShapeCases, FloatHullsBesideADiskFloat) { checkFloatHullsBesideADisk<float>(20240601 + 99); }
+TEST(DiskShapeCases, FloatHullsBesideADiskDouble) {
+  checkFloatHullsBesideADisk<double>(20240601 + 100);
+}
+
 // The closed forms of the shapes with straight edges (a capsule's axis, a box's,
 // a triangle's and a Convex's edges) pair the disk with an edge by the segment
 // solver and certify the pair along its separation with the component along

@@ -310,25 +310,9 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
     const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
     const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
     const double h = k * rng.uniform(0.02, 1.02), taper = rng.uniform(0.0, 1.0);
-    auto vertices = std::make_shared<std::vector<V>>();
-    for (const double z : {-h, h}) {
-      const double ring = z < 0 ? 1.0 : taper;
-      for (int i = 0; i < n; ++i) {
-        const double angle = 2 * M_PI * i / n;
-        const Vd vertex(ring * a * std::cos(angle), ring * b * std::sin(angle), z);
-        vertices->push_back(vertex.cast<float>().template cast<S>());
-      }
-    }
-    auto faces = std::make_shared<std::vector<int>>();
-    faces->push_back(n);
-    for (int i = 0; i < n; ++i) faces->push_back(n - 1 - i);
-    faces->push_back(n);
-    for (int i = 0; i < n; ++i) faces->push_back(n + i);
-    for (int i = 0; i < n; ++i) {
-      const int next = (i + 1) % n;
-      faces->insert(faces->end(), {4, i, next, n + next, n + i});
-    }
-    const fcl::Convex<S> hull(vertices, n + 2, faces);
+    const fcl::Convex<S> hull =
+        fcl_disk_test::convexOf<S>(fcl_disk_test::floatTaperedPrism(n, a, b, h, taper));
+    const std::vector<V>& vertices = hull.getVertices();
     const S r = S(k * rng.uniform(0.02, 1.02));
     fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
     X_WD.linear() = rng.rotation().template cast<S>();
@@ -341,8 +325,8 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
     const Vd n_disk = R_D.col(2).normalized();
     const Vd disk_support = double(r) * (w - w.dot(n_disk) * n_disk).normalized();
     const auto lowest_vertex = [&](const Vd& along) {
-      Vd lowest = R_S * (*vertices)[0].template cast<double>();
-      for (const V& v : *vertices) {
+      Vd lowest = R_S * vertices[0].template cast<double>();
+      for (const V& v : vertices) {
         const Vd y = R_S * v.template cast<double>();
         if (y.dot(along) < lowest.dot(along)) lowest = y;
       }
