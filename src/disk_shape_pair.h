@@ -216,6 +216,18 @@ template <typename Traits>
 constexpr bool
     kHasClosedFormFirst<Traits, std::void_t<decltype(&Traits::closedFormDecidesFirst)>> = true;
 
+/// Whether a Traits class checks a meeting its projection found against its
+/// support's set (the Targets with a supportMismatch):
+///   static std::optional<LeafToDisk> answerOffSupportSet(
+///       const DiskInShape&, const Shape&, const Vec3& common, double scale);
+/// the pair's answer where the meeting point `common` may lie farther than
+/// the mismatch from the support's set, else nullopt (the meeting stands).
+template <typename Traits, typename = void>
+constexpr bool kHasSupportSetCheck = false;
+template <typename Traits>
+constexpr bool
+    kHasSupportSetCheck<Traits, std::void_t<decltype(&Traits::answerOffSupportSet)>> = true;
+
 /// Each pair specialises this for its shape class (src/pairs/disk_<shape>.cpp)
 /// with static distance() and intersect() matching diskShapeDistance /
 /// diskShapeIntersect; GenericDiskShapePair implements both for pairs solved by
@@ -327,8 +339,27 @@ struct GenericDiskShapePair {
       // shape is the solver's residual.
       solution.q = solution.p;
       solution.distance = solution.lower_bound = 0.0;
+    } else if (solution.distance == 0.0) {
+      // The solver's common point, checked against the support's set.
+      if (const auto answer = answerOffSupportSet(disk, shape, solution.p, scale)) {
+        solution.p = answer->p_disk;
+        solution.q = answer->p_leaf;
+        solution.distance = answer->distance;
+        solution.lower_bound = answer->certified;
+      }
     }
     return solution;
+  }
+
+  /// Traits::answerOffSupportSet where the Traits has it (kHasSupportSetCheck).
+  static std::optional<LeafToDisk> answerOffSupportSet([[maybe_unused]] const DiskInShape& disk,
+                                                       [[maybe_unused]] const Shape& shape,
+                                                       [[maybe_unused]] const Vec3& common,
+                                                       [[maybe_unused]] double scale) {
+    if constexpr (kHasSupportSetCheck<Traits>) {
+      return Traits::answerOffSupportSet(disk, shape, common, scale);
+    }
+    return std::nullopt;
   }
 
   /// The slack under which the candidates of a pair known to share a point
@@ -392,12 +423,21 @@ struct GenericDiskShapePair {
       }
       return true;
     }
-    const DiskShapeSolution solution =
+    DiskShapeSolution solution =
         solveDiskShape(target, disk, rho, scale, SolverGoal::intersection);
     std::optional<Separation> separation;
     if (!(solution.distance <= touching) &&
         !overlapLeftOpen(target, disk, rho, solution, scale, &separation)) {
       return false;
+    }
+    if (!separation && solution.distance <= touching) {
+      // The solver's common point, checked against the support's set as
+      // distance() checks it: touching within the mismatch and the tolerance.
+      if (const auto answer = answerOffSupportSet(disk, shape, solution.p, scale)) {
+        if (!(answer->distance <= touching + supportMismatchOf(target))) return false;
+        solution.p = answer->p_disk;
+        solution.q = answer->p_leaf;
+      }
     }
     if (contact) {
       // pos: the common point, or midway between the solver's nearest points

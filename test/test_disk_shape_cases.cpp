@@ -1583,8 +1583,9 @@ double facesThickness(const HullLists& lists) {
 /// 0.01..100 delta. The distance to the vertices' hull is then at least G,
 /// and the answer, exact to delta plus the solver's accuracy
 /// (docs/disk_shape_distance.md, section 4, "Convex"), at least G less that;
-/// a pair intersect() calls touching is within that of distance 0, one it
-/// calls apart at a positive distance.
+/// a pair intersect() calls touching (a point within delta of the vertices'
+/// hull) within twice that of distance 0, one it calls apart at a positive
+/// distance.
 template <typename S>
 void checkFloatHullsBesideADisk(std::uint64_t seed) {
   // The distance's accuracy beyond the thickness: 1e-12 of the scene in
@@ -1634,10 +1635,11 @@ void checkFloatHullsBesideADisk(std::uint64_t seed) {
         << "trial " << trial << ": gap " << gap / delta << " thicknesses, distance "
         << double(answer.distance) / delta;
     EXPECT_LE(double(answer.lower_bound), double(answer.distance));
-    // The touching rule: closer than delta + 1e-13 of the scene.
+    // The touching rule: a point within delta + 1e-13 of the scene of the
+    // vertices' hull, so a distance exact to delta within two.
     const bool intersects = fcl_disk::diskShapeIntersect<S>(r, X_WD, hull, X_WS, nullptr);
     if (intersects) {
-      EXPECT_LE(double(answer.distance), allowed) << "trial " << trial;
+      EXPECT_LE(double(answer.distance), delta + allowed) << "trial " << trial;
     } else {
       EXPECT_GT(double(answer.distance), 0.0) << "trial " << trial;
     }
@@ -1649,6 +1651,70 @@ void checkFloatHullsBesideADisk(std::uint64_t seed) {
 TEST(DiskShapeCases, FloatHullsBesideADiskFloat) { checkFloatHullsBesideADisk<float>(20240601 + 99); }
 TEST(DiskShapeCases, FloatHullsBesideADiskDouble) {
   checkFloatHullsBesideADisk<double>(20240601 + 100);
+}
+
+/// The hull and orientations of fuzz_disk_shapes'
+/// regression-float-hull-vertex-on-rim (a prism over a 56-gon tapered to
+/// 0.56, vertices rounded to float, faces 2.6e-11 thick in a scene of 2e-3),
+/// in double with orthonormal rotations, put beside the disk along
+/// directions within 0.12 rad of one where a side's vertex meets the rim, at
+/// 0.5..2 thicknesses: there the face planes reach up to 1.25 thicknesses
+/// beyond the vertices' hull, and a disk point inside every plane found by
+/// the closed form is no common point; the meeting is checked against the
+/// vertices (ConvexTraits::answerOffSupportSet). The distance is exact to
+/// the thickness: at least the gap less it; intersect() calling the pair
+/// touching, within twice that of 0.
+TEST(DiskShapeCases, FacePlanesReachingBeyondTheVerticesAtACorner) {
+  const HullLists lists = fcl_disk_test::floatTaperedPrism(
+      56, 6.2974546020208405e-4, 1.339378061322885e-4, 1.0636719123140298e-3,
+      3.5118146926902212e-4 / 6.2974546020208405e-4);
+  const double delta = facesThickness(lists);
+  const fcl::Convex<double> hull = fcl_disk_test::convexOf<double>(lists);
+  const double r = double(0.00061779370298609138f);
+  Eigen::Matrix3d disk_rotation, hull_rotation;
+  disk_rotation << 0.80031859874725342, -0.040952134877443314, -0.5981748104095459,
+      0.50769424438476562, -0.48445111513137817, 0.71242797374725342, -0.31896188855171204,
+      -0.87385928630828857, -0.36692407727241516;
+  hull_rotation << -0.1837422251701355, 0.59611994028091431, -0.78158801794052124,
+      0.47091758251190186, -0.64455783367156982, -0.60231375694274902, -0.86282992362976074,
+      -0.47873401641845703, -0.16229087114334106;
+  Transform3d X_WD = kIdentity, X_WS = kIdentity;
+  X_WD.linear() = Eigen::Quaterniond(disk_rotation).normalized().toRotationMatrix();
+  X_WS.linear() = Eigen::Quaterniond(hull_rotation).normalized().toRotationMatrix();
+  const Vector3d n_disk = X_WD.linear().col(2);
+  const Vector3d towards_corner = Vector3d(0.63, -0.75, -0.13).normalized();
+  fcl_disk_test::Random rng(20240601 + 101);
+  int beyond_a_thickness = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    const Vector3d w =
+        (towards_corner + std::tan(0.12 * std::sqrt(rng.uniform01())) * rng.unitVector())
+            .normalized();
+    const Vector3d disk_support = r * (w - w.dot(n_disk) * n_disk).normalized();
+    const auto lowest_vertex = [&](const Vector3d& translation) {
+      Vector3d lowest = X_WS.linear() * lists.vertices[0] + translation;
+      for (const Vector3d& v : lists.vertices) {
+        const Vector3d y = X_WS.linear() * v + translation;
+        if (y.dot(w) < lowest.dot(w)) lowest = y;
+      }
+      return lowest;
+    };
+    X_WS.translation() = disk_support - lowest_vertex(Vector3d::Zero()) +
+                         rng.uniform(0.5, 2.0) * delta * w;
+    const double gap = lowest_vertex(X_WS.translation()).dot(w) - disk_support.dot(w);
+    const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
+    const double scale = r + 1.3e-3 + X_WS.translation().norm();
+    const double allowed = delta + kExact * scale;
+    beyond_a_thickness += gap > allowed;
+    EXPECT_GE(answer.distance, gap - allowed)
+        << "trial " << trial << ": gap " << gap / delta << " thicknesses, distance "
+        << answer.distance / delta;
+    // Touching: a point within the thickness of the vertices' hull (the
+    // touching rule), so a distance exact to the thickness within two.
+    if (fcl_disk::diskShapeIntersect<double>(r, X_WD, hull, X_WS, nullptr)) {
+      EXPECT_LE(answer.distance, delta + allowed) << "trial " << trial;
+    }
+  }
+  EXPECT_GT(beyond_a_thickness, 1000);
 }
 
 // The closed forms of the shapes with straight edges (a capsule's axis, a box's,

@@ -43,6 +43,19 @@ constexpr double kDotRounding = 4 * std::numeric_limits<double>::epsilon();
 /// The closed form's passes (ConvexTraits::closedForm): each moves to the
 /// hull's feature nearest the disk point of the last feature's pair.
 constexpr int kFeaturePasses = 3;
+/// ... and for a meeting the face planes found off the vertices' hull
+/// (answerOffSupportSet): the pair nearly touches, where the passes converge
+/// slowly. With 3, FacePlanesReachingBeyondTheVerticesAtACorner (4,000
+/// near-corner pairs) fails 78 checks, as without the check; with 8 or 16,
+/// none. Only such meetings of hulls with a thickness pay for it.
+constexpr int kOffSupportSetPasses = 16;
+
+/// How many faces' thicknesses beyond the vertices' hull the face planes are
+/// taken to reach at most, for hulls too thin for the search of
+/// answerOffSupportSet: the corners measured reach 1.25
+/// (FacePlanesReachingBeyondTheVerticesAtACorner) and 1.8 thicknesses
+/// (fuzz_disk_shapes, regression-float-hull-vertex-on-rim).
+constexpr double kPlanesReach = 16.0;
 
 /// Hulls with at least this many vertices keep them in clusters of at most
 /// kClusterSize, each with a bounding ball, for their extreme values along a
@@ -1066,6 +1079,14 @@ struct ConvexTarget {
     return nearest.inside() ? 0.0 : nearest.v.norm();
   }
 
+  /// How deep y lies inside every face plane: the least of minus its plane
+  /// heights (negative beyond a plane).
+  double depthInsidePlanes(const Vec3& y) const {
+    return -(planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
+             planes.col(3))
+                .maxCoeff();
+  }
+
   /// The vertices' mean (the hull's own frame origin may lie anywhere).
   Vec3 centre() const { return geometry.centre; }
 
@@ -1228,7 +1249,38 @@ struct ConvexTraits {
     return closedFormByFaces(disk, convex, scale);
   }
 
-  /// The closed form's passes with the hull's feature nearest p found by the
+  /// The answer for a meeting found at the disk point `common` inside the
+  /// face planes (closedFormByFaces, the generic solver's projection) when
+  /// `common` may lie farther than the faces' thickness plus
+  /// kShapeGapTolerance of the scene from the vertices' hull: the planes of
+  /// faces planar only to rounding reach that far beyond it near some corners
+  /// (docs/disk_shape_distance.md, section 4, "Convex"). Then the closed form
+  /// on the vertices alone (closedFormBySupport), where it settles; nullopt
+  /// otherwise (the meeting stands). With the planes reaching at most
+  /// kPlanesReach thicknesses beyond the vertices' hull, no search is needed
+  /// for hulls whose faces are thinner than kShapeGapTolerance / kPlanesReach
+  /// of the scene (every hull of planar faces, and data in double planar to
+  /// its rounding: the reach stays within the gap tolerance), nor for a point
+  /// at least that reach deep inside every plane (the ball of that radius
+  /// about a point outside the vertices' hull would reach farther from it).
+  static std::optional<LeafToDisk> answerOffSupportSet(const DiskInShape& disk,
+                                                       const fcl::Convex<S>& convex,
+                                                       const Vec3& common, double scale) {
+    const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(convex);
+    const double reach = kPlanesReach * geometry.face_thickness;
+    if (!(reach > kShapeGapTolerance * scale)) return std::nullopt;
+    const ConvexTarget<S> hull(convex, geometry);
+    if (hull.depthInsidePlanes(common) >= reach) return std::nullopt;
+    if (hull.supportSetDistanceAbove(common) <=
+        geometry.face_thickness + kShapeGapTolerance * scale) {
+      return std::nullopt;
+    }
+    const LeafToDisk by_vertices = closedFormBySupport(disk, hull, scale, kOffSupportSetPasses);
+    if (!by_vertices.exact) return std::nullopt;
+    return by_vertices;
+  }
+
+  /// The closed form's passes (at most `passes`) with the hull's feature nearest p found by the
   /// support search (nearestHullSimplex, from the last pass's simplex; the
   /// first pass's from the vertex most towards p from the centre), which
   /// reads `hull`'s vertices only (its faces need not be computed): from p,
@@ -1247,7 +1299,7 @@ struct ConvexTraits {
   /// of points of the disk and of the hull of the vertices, whose support the
   /// certificate reads.
   static LeafToDisk closedFormBySupport(const DiskInShape& disk, const ConvexTarget<S>& hull,
-                                        double scale) {
+                                        double scale, int passes = kFeaturePasses) {
     const LeafToDisk not_settled;
     const auto least_along = [&](const Vec3& w) { return -hull.mostAlong(-w); };
     const auto certified = [&](double upper, const Vec3& p_disk, const Vec3& p_hull) {
@@ -1256,7 +1308,7 @@ struct ConvexTraits {
     const auto point = [&](int index) -> Vec3 { return hull.points.row(index).transpose(); };
     Vec3 p = disk.point(disk.nearest(hull.geometry.centre));
     HullSimplex simplex = hull.simplexTowards(p);
-    for (int pass = 0; pass < kFeaturePasses; ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {
       simplex = hull.nearestVertexSimplex(p, simplex);
       if (simplex.inside()) return meetingAt(p);
       const double gap = simplex.v.norm();
@@ -1352,7 +1404,7 @@ struct ConvexTraits {
     int last_face = -1;  // where the next pass's climb starts
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
       const auto at = hull.nearestFeature(p, last_face);
-      if (!at) return meetingAt(p);
+      if (!at) return answerOffSupportSet(disk, convex, p, scale).value_or(meetingAt(p));
       const auto& [nearest, face_index] = *at;
       last_face = face_index;
       const ConvexFace& face = hull.faces[face_index];
