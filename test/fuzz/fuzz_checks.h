@@ -250,16 +250,6 @@ bool allNaN(const fcl_disk::DiskDistanceResult<S>& r) {
          r.p_W2.array().isNaN().all();
 }
 
-/// FCL_DISK_FUZZ_PRINT=1 in the environment prints every decoded input (to
-/// read a reproducer or check a seed: `FCL_DISK_FUZZ_PRINT=1 ./fuzz_x file`).
-inline bool printInputs() {
-  static const bool print = [] {
-    const char* value = std::getenv("FCL_DISK_FUZZ_PRINT");
-    return value && *value && *value != '0';
-  }();
-  return print;
-}
-
 /// Runs `check(pair, reader)` on the input decoded as double and as float (the
 /// reader then points past the pair, at the target's own option bytes);
 /// returns 0, or -1 (libFuzzer: keep it out of the corpus) if neither decoding

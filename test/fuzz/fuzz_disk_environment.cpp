@@ -196,6 +196,7 @@ void run(ByteReader& in, int kind, std::uint8_t flags) {
          << c_WD.transpose().cast<double>() << " items "
          << (kind < 8 ? environment.triangles.size() : environment.cells.size()) << " distance "
          << result.min_distance;
+  if (fcl_disk_fuzz::printInputs()) std::fprintf(stderr, "%s\n", detail.str().c_str());
   if (!fcl_disk::isValidDiskPose(X_WD)) {
     if (!std::isnan(double(result.min_distance)) || contacts.isCollision()) {
       fail("a pose describing no pair gives NaN and no contact", detail.str());

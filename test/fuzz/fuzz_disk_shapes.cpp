@@ -250,6 +250,12 @@ void check(const Shape& wanted, S r, const fcl::Transform3<S>& X_WD, const fcl::
                 double(M(0, 1)), double(M(0, 2)), double(M(0, 3)), double(M(1, 0)), double(M(1, 1)),
                 double(M(1, 2)), double(M(1, 3)), double(M(2, 0)), double(M(2, 1)), double(M(2, 2)),
                 double(M(2, 3)));
+  if (fcl_disk_fuzz::printInputs()) {
+    std::fprintf(stderr, "%s\n", detail);
+    for (const V3& v : wanted.vertices) {
+      std::fprintf(stderr, "  vertex %.17Lg %.17Lg %.17Lg\n", v.x(), v.y(), v.z());
+    }
+  }
   if (!describesPair(wanted, r, X_WD, X_WS)) {
     if (!(std::isnan(result.distance) && std::isnan(result.lower_bound) &&
           result.p_W_disk.array().isNaN().all() && result.p_W_shape.array().isNaN().all()) ||

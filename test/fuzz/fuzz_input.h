@@ -22,6 +22,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <optional>
@@ -426,6 +427,16 @@ std::optional<DiskPairInput<S>> decodeDiskPair(ByteReader& in) {
   const auto pair = decodeStructured(mode, in);
   if (!pair) return std::nullopt;
   return castTo<S>(*pair);
+}
+
+/// FCL_DISK_FUZZ_PRINT=1 in the environment prints every decoded input (to
+/// read a reproducer or check a seed: `FCL_DISK_FUZZ_PRINT=1 ./fuzz_x file`).
+inline bool printInputs() {
+  static const bool print = [] {
+    const char* value = std::getenv("FCL_DISK_FUZZ_PRINT");
+    return value && *value && *value != '0';
+  }();
+  return print;
 }
 
 }  // namespace fcl_disk_fuzz
