@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <fcl/geometry/shape/convex.h>
 
 #include <array>
@@ -120,6 +121,22 @@ inline HullLists floatTaperedPrism(int n, double a, double b, double h, double t
     hull.faces.push_back({i, next, n + next, n + i});
   }
   return hull;
+}
+
+/// The point most along unit w of the disk of radius r centred at the origin
+/// with unit normal n.
+inline Vector3d diskPointMostAlong(double r, const Vector3d& n, const Vector3d& w) {
+  return r * (w - w.dot(n) * n).normalized();
+}
+
+/// The vertex of `vertices` turned by R least along w (the first of ties).
+inline Vector3d vertexLeastAlong(const std::vector<Vector3d>& vertices, const Eigen::Matrix3d& R,
+                                 const Vector3d& w) {
+  Vector3d least = R * vertices[0];
+  for (const Vector3d& v : vertices) {
+    if ((R * v).dot(w) < least.dot(w)) least = R * v;
+  }
+  return least;
 }
 
 /// FCL's face list of `lists`: [k, i_1..i_k, k', ...].

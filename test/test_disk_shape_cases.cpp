@@ -1612,20 +1612,14 @@ void checkFloatHullsBesideADisk(std::uint64_t seed) {
     const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
     const Eigen::Matrix3d R_S = X_WS.linear().template cast<double>();
     const Vector3d n_disk = R_D.col(2).normalized();
-    const Vector3d disk_support = double(r) * (w - w.dot(n_disk) * n_disk).normalized();
-    const auto lowest_vertex = [&](const Vector3d& along) {
-      Vector3d lowest = R_S * lists.vertices[0];
-      for (const Vector3d& v : lists.vertices) {
-        if ((R_S * v).dot(along) < lowest.dot(along)) lowest = R_S * v;
-      }
-      return lowest;
-    };
+    const Vector3d disk_support = fcl_disk_test::diskPointMostAlong(double(r), n_disk, w);
     // Gaps of 0.01..100 thicknesses (or float roundings of the size, where the
     // faces happen to round planar).
     const double wanted_gap = std::max(delta, 1e-7 * k) * rng.logUniform(0.01, 100.0);
-    X_WS.translation() = (disk_support - lowest_vertex(w) + wanted_gap * w).template cast<S>();
+    const Vector3d lowest = fcl_disk_test::vertexLeastAlong(lists.vertices, R_S, w);
+    X_WS.translation() = (disk_support - lowest + wanted_gap * w).template cast<S>();
     const Vector3d t = X_WS.translation().template cast<double>();
-    const double gap = (lowest_vertex(w) + t).dot(w) - disk_support.dot(w);
+    const double gap = (lowest + t).dot(w) - disk_support.dot(w);
     const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
     const double scale = double(r) + Vector3d(a, b, h).norm() + t.norm();
     const double allowed = delta + kAccuracy * scale;
@@ -1689,18 +1683,10 @@ TEST(DiskShapeCases, FacePlanesReachingBeyondTheVerticesAtACorner) {
     const Vector3d w =
         (towards_corner + std::tan(0.12 * std::sqrt(rng.uniform01())) * rng.unitVector())
             .normalized();
-    const Vector3d disk_support = r * (w - w.dot(n_disk) * n_disk).normalized();
-    const auto lowest_vertex = [&](const Vector3d& translation) {
-      Vector3d lowest = X_WS.linear() * lists.vertices[0] + translation;
-      for (const Vector3d& v : lists.vertices) {
-        const Vector3d y = X_WS.linear() * v + translation;
-        if (y.dot(w) < lowest.dot(w)) lowest = y;
-      }
-      return lowest;
-    };
-    X_WS.translation() = disk_support - lowest_vertex(Vector3d::Zero()) +
-                         rng.uniform(0.5, 2.0) * delta * w;
-    const double gap = lowest_vertex(X_WS.translation()).dot(w) - disk_support.dot(w);
+    const Vector3d disk_support = fcl_disk_test::diskPointMostAlong(r, n_disk, w);
+    const Vector3d lowest = fcl_disk_test::vertexLeastAlong(lists.vertices, X_WS.linear(), w);
+    X_WS.translation() = disk_support - lowest + rng.uniform(0.5, 2.0) * delta * w;
+    const double gap = (lowest + X_WS.translation()).dot(w) - disk_support.dot(w);
     const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
     const double scale = r + 1.3e-3 + X_WS.translation().norm();
     const double allowed = delta + kExact * scale;

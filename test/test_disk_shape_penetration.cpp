@@ -302,7 +302,6 @@ TEST(DiskShapePenetration, CornerOnTheRimFoundByFuzzing) {
 /// the scene).
 template <typename S>
 void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
-  using V = fcl::Vector3<S>;
   Random rng(seed);
   int touching = 0;
   for (int trial = 0; trial < 1500; ++trial) {
@@ -310,9 +309,8 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
     const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
     const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
     const double h = k * rng.uniform(0.02, 1.02), taper = rng.uniform(0.0, 1.0);
-    const fcl::Convex<S> hull =
-        fcl_disk_test::convexOf<S>(fcl_disk_test::floatTaperedPrism(n, a, b, h, taper));
-    const std::vector<V>& vertices = hull.getVertices();
+    const fcl_disk_test::HullLists lists = fcl_disk_test::floatTaperedPrism(n, a, b, h, taper);
+    const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
     const S r = S(k * rng.uniform(0.02, 1.02));
     fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
     X_WD.linear() = rng.rotation().template cast<S>();
@@ -322,19 +320,11 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
     const Vd w = rng.unitVector();
     const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
     const Eigen::Matrix3d R_S = X_WS.linear().template cast<double>();
-    const Vd n_disk = R_D.col(2).normalized();
-    const Vd disk_support = double(r) * (w - w.dot(n_disk) * n_disk).normalized();
-    const auto lowest_vertex = [&](const Vd& along) {
-      Vd lowest = R_S * vertices[0].template cast<double>();
-      for (const V& v : vertices) {
-        const Vd y = R_S * v.template cast<double>();
-        if (y.dot(along) < lowest.dot(along)) lowest = y;
-      }
-      return lowest;
-    };
-    X_WS.translation() = (disk_support - lowest_vertex(w)).template cast<S>();
+    const Vd disk_support = fcl_disk_test::diskPointMostAlong(double(r), R_D.col(2).normalized(), w);
+    const Vd lowest = fcl_disk_test::vertexLeastAlong(lists.vertices, R_S, w);
+    X_WS.translation() = (disk_support - lowest).template cast<S>();
     const Vd t = X_WS.translation().template cast<double>();
-    const double F = disk_support.dot(w) - (lowest_vertex(w) + t).dot(w);
+    const double F = disk_support.dot(w) - (lowest + t).dot(w);
     fcl_disk::DiskContact<S> contact;
     if (!fcl_disk::diskShapeIntersect(r, X_WD, hull, X_WS, &contact)) continue;
     ++touching;
