@@ -1,5 +1,6 @@
 // Large convex hulls as vertex and face lists, for the tests of the Convex
-// pair's paths of many faces and vertices (test_disk_shape_cases,
+// pair's paths of many faces and vertices, and hulls whose faces are planar
+// only to float's rounding put beside a disk (test_disk_shape_cases,
 // test_disk_shape_penetration).
 #pragma once
 

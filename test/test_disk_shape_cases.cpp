@@ -1650,7 +1650,7 @@ TEST(DiskShapeCases, FloatHullsBesideADiskDouble) {
 /// The hull and orientations of fuzz_disk_shapes'
 /// regression-float-hull-vertex-on-rim (a prism over a 56-gon tapered to
 /// 0.56, vertices rounded to float, faces 2.6e-11 thick in a scene of 2e-3),
-/// in double with orthonormal rotations, put beside the disk along
+/// in double with its float rotations made orthonormal, put beside the disk along
 /// directions within 0.12 rad of one where a side's vertex meets the rim, at
 /// 0.5..2 thicknesses: there the face planes reach up to 1.25 thicknesses
 /// beyond the vertices' hull, and a disk point inside every plane found by
@@ -1665,6 +1665,7 @@ TEST(DiskShapeCases, FacePlanesReachingBeyondTheVerticesAtACorner) {
   const double delta = facesThickness(lists);
   const fcl::Convex<double> hull = fcl_disk_test::convexOf<double>(lists);
   const double r = double(0.00061779370298609138f);
+  const double kHullRadius = 1.3e-3;  // the vertices' largest norm, rounded up
   Eigen::Matrix3d disk_rotation, hull_rotation;
   disk_rotation << 0.80031859874725342, -0.040952134877443314, -0.5981748104095459,
       0.50769424438476562, -0.48445111513137817, 0.71242797374725342, -0.31896188855171204,
@@ -1688,7 +1689,7 @@ TEST(DiskShapeCases, FacePlanesReachingBeyondTheVerticesAtACorner) {
     X_WS.translation() = disk_support - lowest + rng.uniform(0.5, 2.0) * delta * w;
     const double gap = (lowest + X_WS.translation()).dot(w) - disk_support.dot(w);
     const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
-    const double scale = r + 1.3e-3 + X_WS.translation().norm();
+    const double scale = r + kHullRadius + X_WS.translation().norm();
     const double allowed = delta + kExact * scale;
     beyond_a_thickness += gap > allowed;
     EXPECT_GE(answer.distance, gap - allowed)
