@@ -448,10 +448,22 @@ void considerRimCandidates(const PairInFrame1& pair, PenetrationSearch& search,
 
 /// For a pair known to share a point, once its rim candidates leave a depth
 /// of at most kSharedPointDepth: the common point as a rim angle of its own
-/// (considerSharedRimPoint).
+/// (considerSharedRimPoint). Where commonPoint finds none (rims touching to
+/// rounding with nearly parallel tangents: its chord's ends are square roots
+/// of near-zero differences, off by more than its slack), the exact
+/// distance's nearest points, midway, when they are within the touching
+/// tolerance (fuzz_disk_intersection, regression-touching-rims-nearly-
+/// parallel-tangents: depth 2.1e-8 of a scene of 3.4 reported where PD is 0).
 void considerSharedPointIfShallow(const PairInFrame1& pair, PenetrationSearch& search) {
   if (!(search.bestValue() <= kSharedPointDepth)) return;
-  if (const auto common = internal::commonPoint(pair)) search.considerSharedRimPoint(*common);
+  if (const auto common = internal::commonPoint(pair)) {
+    search.considerSharedRimPoint(*common);
+    return;
+  }
+  const internal::DiskPairAnswer nearest = internal::solveDiskPairInFrame1(pair);
+  if (nearest.distance <= internal::kTouchingTolerance * pair.scale()) {
+    search.considerSharedRimPoint(0.5 * (nearest.p + nearest.q));
+  }
 }
 
 /// The penetration of a pair in frame 1 whose lengths are in scene sizes.

@@ -1527,8 +1527,9 @@ TEST(NearlyParallelPairs, MatchReference) {
 // either side of the plane through that point normal to disk 1's radial (PD =
 // 0): Q's root there is a near-double root, known to ~sqrt(eps), and the
 // direction t1 x t2 it gives is off by far more than the 1e-12 promise allows
-// (a fuzz_disk_intersection finding, regression-depth-rims-touching-nearly-tangent,
-// is the first case: depth 2.6e-7 along n1 where F is 1e-17 along t1 x t2).
+// (fuzz_disk_intersection findings, regression-depth-rims-touching-nearly-tangent
+// and regression-touching-rims-nearly-parallel-tangents, are the first cases:
+// depths 2.6e-7 and 2.1e-8 along n1 where F is 1e-17 along t1 x t2).
 TEST(RimsTouchingNearlyTangent, MatchReference) {
   using Pose = fcl::Transform3d;
   PosedPairs cases;
@@ -1538,6 +1539,11 @@ TEST(RimsTouchingNearlyTangent, MatchReference) {
         -0.0015624952316429699, -0.9999938965030013, -0.0031249904632859394,
         -0.60000122069939976, -0.0015624952316429699, 0.79999755860120059;
     B.translation() << 1.5999938676925824, 0.0023223657178145728, 0.45000218371555556;
+    cases.emplace_back(1.0, A, 0.75, B);
+    // regression-touching-rims-nearly-parallel-tangents: the same rotation,
+    // touching to rounding where commonPoint finds no common point (depth
+    // 2.1e-8 along n1 before the exact distance's nearest points stood in).
+    B.translation() << 1.5999911876051804, 0.0028976109847180017, 0.45000242071205171;
     cases.emplace_back(1.0, A, 0.75, B);
   }
   fcl_disk_test::Random rng(kSeed + 83);
