@@ -937,10 +937,7 @@ struct ConvexTarget {
         if (isNearestPoint(y, on_face.q, height)) return std::pair(on_face, climbed);
       }
     }
-    // Every plane's height of y, in one vectorised pass over the plane columns.
-    Eigen::VectorXd& heights = geometry.heights;
-    heights.noalias() = planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
-                        planes.col(3);
+    const Eigen::VectorXd& heights = planeHeights(y);
     const double* height_of = heights.data();
     Eigen::Index farthest_index = 0;
     const double farthest_height = heights.maxCoeff(&farthest_index);
@@ -1079,13 +1076,18 @@ struct ConvexTarget {
     return nearest.inside() ? 0.0 : nearest.v.norm();
   }
 
+  /// Every face plane's height of y, in one vectorised pass over the plane
+  /// columns (this thread's buffer, valid until the next call).
+  const Eigen::VectorXd& planeHeights(const Vec3& y) const {
+    Eigen::VectorXd& heights = geometry.heights;
+    heights.noalias() = planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
+                        planes.col(3);
+    return heights;
+  }
+
   /// How deep y lies inside every face plane: the least of minus its plane
   /// heights (negative beyond a plane).
-  double depthInsidePlanes(const Vec3& y) const {
-    return -(planes.col(0) * y.x() + planes.col(1) * y.y() + planes.col(2) * y.z() -
-             planes.col(3))
-                .maxCoeff();
-  }
+  double depthInsidePlanes(const Vec3& y) const { return -planeHeights(y).maxCoeff(); }
 
   /// The vertices' mean (the hull's own frame origin may lie anywhere).
   Vec3 centre() const { return geometry.centre; }
@@ -1266,13 +1268,19 @@ struct ConvexTraits {
   static std::optional<LeafToDisk> answerOffSupportSet(const DiskInShape& disk,
                                                        const fcl::Convex<S>& convex,
                                                        const Vec3& common, double scale) {
-    const ConvexGeometry& geometry = ConvexTarget<S>::verifiedGeometryOf(convex);
-    const double reach = kPlanesReach * geometry.face_thickness;
+    return answerOffVertices(
+        disk, ConvexTarget<S>(convex, ConvexTarget<S>::verifiedGeometryOf(convex)), common,
+        scale);
+  }
+  /// answerOffSupportSet on the hull's target, for callers holding it (not an
+  /// overload: kHasSupportSetCheck takes answerOffSupportSet's address).
+  static std::optional<LeafToDisk> answerOffVertices(const DiskInShape& disk,
+                                                     const ConvexTarget<S>& hull,
+                                                     const Vec3& common, double scale) {
+    const double reach = kPlanesReach * hull.face_thickness;
     if (!(reach > kShapeGapTolerance * scale)) return std::nullopt;
-    const ConvexTarget<S> hull(convex, geometry);
     if (hull.depthInsidePlanes(common) >= reach) return std::nullopt;
-    if (hull.supportSetDistanceAbove(common) <=
-        geometry.face_thickness + kShapeGapTolerance * scale) {
+    if (hull.supportSetDistanceAbove(common) <= hull.face_thickness + kShapeGapTolerance * scale) {
       return std::nullopt;
     }
     const LeafToDisk by_vertices = closedFormBySupport(disk, hull, scale, kOffSupportSetPasses);
@@ -1404,7 +1412,7 @@ struct ConvexTraits {
     int last_face = -1;  // where the next pass's climb starts
     for (int pass = 0; pass < kFeaturePasses; ++pass) {
       const auto at = hull.nearestFeature(p, last_face);
-      if (!at) return answerOffSupportSet(disk, convex, p, scale).value_or(meetingAt(p));
+      if (!at) return answerOffVertices(disk, hull, p, scale).value_or(meetingAt(p));
       const auto& [nearest, face_index] = *at;
       last_face = face_index;
       const ConvexFace& face = hull.faces[face_index];
@@ -1604,6 +1612,9 @@ struct ConvexTraits {
     return lower > bound;
   }
 };
+
+// The generic driver finds the meeting check by its address: one function.
+static_assert(kHasSupportSetCheck<ConvexTraits<double>> && kHasSupportSetCheck<ConvexTraits<float>>);
 
 }  // namespace
 
