@@ -124,6 +124,33 @@ inline HullLists floatTaperedPrism(int n, double a, double b, double h, double t
   return hull;
 }
 
+/// A random pair of the float-hull tests: a floatTaperedPrism over a
+/// 32..63-gon at length scale k (log-uniform in 1e-4..1: semi-axes a, b and
+/// half-height h are k U(0.02, 1.02)) with the taper `draw_taper(rng)` gives,
+/// a disk radius k U(0.02, 1.02), and two random rotations (disk, hull).
+struct FloatPrismAndDisk {
+  HullLists lists;
+  double k;         ///< the length scale
+  Vector3d extent;  ///< (a, b, h)
+  double r;
+  Eigen::Matrix3d R_disk, R_hull;
+};
+template <typename Rng, typename DrawTaper>
+FloatPrismAndDisk drawFloatPrismAndDisk(Rng& rng, DrawTaper&& draw_taper) {
+  FloatPrismAndDisk pair;
+  const double k = rng.logUniform(1e-4, 1.0);
+  const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
+  const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
+  const double h = k * rng.uniform(0.02, 1.02), taper = draw_taper(rng);
+  pair.lists = floatTaperedPrism(n, a, b, h, taper);
+  pair.k = k;
+  pair.extent = Vector3d(a, b, h);
+  pair.r = k * rng.uniform(0.02, 1.02);
+  pair.R_disk = rng.rotation();
+  pair.R_hull = rng.rotation();
+  return pair;
+}
+
 /// The point most along unit w of the disk of radius r centred at the origin
 /// with unit normal n.
 inline Vector3d diskPointMostAlong(double r, const Vector3d& n, const Vector3d& w) {

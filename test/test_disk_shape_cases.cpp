@@ -1596,17 +1596,16 @@ void checkFloatHullsBesideADisk(std::uint64_t seed) {
   fcl_disk_test::Random rng(seed);
   int meetings = 0, within_delta = 0;
   for (int trial = 0; trial < 1500; ++trial) {
-    const double k = rng.logUniform(1e-4, 1.0);  // every length
-    const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
-    const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
-    const double h = k * rng.uniform(0.02, 1.02), taper = trial % 2 ? rng.uniform(0.0, 1.0) : rng.logUniform(1e-5, 1e-2);
-    const HullLists lists = fcl_disk_test::floatTaperedPrism(n, a, b, h, taper);
+    const auto drawn = fcl_disk_test::drawFloatPrismAndDisk(rng, [&](fcl_disk_test::Random& r) {
+      return trial % 2 ? r.uniform(0.0, 1.0) : r.logUniform(1e-5, 1e-2);
+    });
+    const HullLists& lists = drawn.lists;
     const double delta = facesThickness(lists);
     const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
-    const S r = S(k * rng.uniform(0.02, 1.02));
+    const S r = S(drawn.r);
     fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
-    X_WD.linear() = rng.rotation().template cast<S>();
-    X_WS.linear() = rng.rotation().template cast<S>();
+    X_WD.linear() = drawn.R_disk.template cast<S>();
+    X_WS.linear() = drawn.R_hull.template cast<S>();
     // In double from the data in S.
     const Vector3d w = rng.unitVector();
     const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
@@ -1615,13 +1614,13 @@ void checkFloatHullsBesideADisk(std::uint64_t seed) {
     const Vector3d disk_support = fcl_disk_test::diskPointMostAlong(double(r), n_disk, w);
     // Gaps of 0.01..100 thicknesses (or float roundings of the size, where the
     // faces happen to round planar).
-    const double wanted_gap = std::max(delta, 1e-7 * k) * rng.logUniform(0.01, 100.0);
+    const double wanted_gap = std::max(delta, 1e-7 * drawn.k) * rng.logUniform(0.01, 100.0);
     const Vector3d lowest = fcl_disk_test::vertexLeastAlong(lists.vertices, R_S, w);
     X_WS.translation() = (disk_support - lowest + wanted_gap * w).template cast<S>();
     const Vector3d t = X_WS.translation().template cast<double>();
     const double gap = (lowest + t).dot(w) - disk_support.dot(w);
     const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
-    const double scale = double(r) + Vector3d(a, b, h).norm() + t.norm();
+    const double scale = double(r) + drawn.extent.norm() + t.norm();
     const double allowed = delta + kAccuracy * scale;
     meetings += answer.distance == 0;
     within_delta += gap < 2.0 * delta;

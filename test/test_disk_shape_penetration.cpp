@@ -305,16 +305,14 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
   Random rng(seed);
   int touching = 0;
   for (int trial = 0; trial < 1500; ++trial) {
-    const double k = rng.logUniform(1e-4, 1.0);  // every length
-    const int n = 32 + int(rng.uniform(0.0, 32.0)) % 32;
-    const double a = k * rng.uniform(0.02, 1.02), b = k * rng.uniform(0.02, 1.02);
-    const double h = k * rng.uniform(0.02, 1.02), taper = rng.uniform(0.0, 1.0);
-    const fcl_disk_test::HullLists lists = fcl_disk_test::floatTaperedPrism(n, a, b, h, taper);
+    const auto drawn = fcl_disk_test::drawFloatPrismAndDisk(
+        rng, [](Random& r) { return r.uniform(0.0, 1.0); });
+    const fcl_disk_test::HullLists& lists = drawn.lists;
     const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
-    const S r = S(k * rng.uniform(0.02, 1.02));
+    const S r = S(drawn.r);
     fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
-    X_WD.linear() = rng.rotation().template cast<S>();
-    X_WS.linear() = rng.rotation().template cast<S>();
+    X_WD.linear() = drawn.R_disk.template cast<S>();
+    X_WS.linear() = drawn.R_hull.template cast<S>();
     // In double from the data in S: the disk's rim point and the hull's
     // vertex lowest along w meet.
     const Vd w = rng.unitVector();
@@ -328,7 +326,7 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
     fcl_disk::DiskContact<S> contact;
     if (!fcl_disk::diskShapeIntersect(r, X_WD, hull, X_WS, &contact)) continue;
     ++touching;
-    const double scale = double(r) + Vd(a, b, h).norm() + t.norm();
+    const double scale = double(r) + drawn.extent.norm() + t.norm();
     EXPECT_LE(double(contact.penetration_depth), F + kDepthRelative<S> * scale)
         << "trial " << trial << ": scale " << scale;
   }
