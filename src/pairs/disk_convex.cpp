@@ -54,7 +54,9 @@ constexpr int kOffSupportSetPasses = 16;
 /// taken to reach at most, for hulls too thin for the search of
 /// answerOffSupportSet: the corners measured reach 1.25
 /// (FacePlanesReachingBeyondTheVerticesAtACorner) and 1.8 thicknesses
-/// (fuzz_disk_shapes, regression-float-hull-vertex-on-rim).
+/// (fuzz_disk_shapes, regression-float-hull-vertex-on-rim). Edges sharper than
+/// 2 asin(1 / 16) ~ 7 degrees reach farther, 1 / sin(alpha / 2) thicknesses
+/// (docs/disk_shape_distance.md, section 4, "Convex", for what that costs).
 constexpr double kPlanesReach = 16.0;
 
 /// Hulls with at least this many vertices keep them in clusters of at most
@@ -1191,6 +1193,43 @@ struct ConvexTarget {
   }
 };
 
+/// The hull of a Convex's vertices alone as the generic solver's Target: the
+/// projection by the support search (nearestVertexSimplex, its nearest
+/// simplex: a vertex, an edge or a triangle of vertices), the support a
+/// vertex. Both read the same set, so the certificate needs no faces'
+/// thickness. It answers the meetings of the face planes that lie off the
+/// vertices' hull where the closed form on the vertices does not settle
+/// (ConvexTraits::answerOffVertices): its projection costs support scans,
+/// which only such rare pairs pay.
+template <typename S>
+struct VertexHullTarget {
+  const ConvexTarget<S>& hull;
+
+  /// The point of the vertices' hull nearest y, with psi's Hessian I - D proj:
+  /// I at a vertex, I - e e^T on an edge of direction e, m m^T on a triangle
+  /// of normal m, 0 inside (a degenerate simplex takes I: only the speed
+  /// depends on it).
+  Projection project(const Vec3& y) const {
+    const HullSimplex nearest = hull.nearestVertexSimplex(y, hull.simplexTowards(y));
+    if (nearest.inside()) return Projection{y, FactoredHessian()};
+    const Vec3 q = y + nearest.v;
+    if (nearest.count == 2) {
+      const Vec3 edge = nearest.relative[1] - nearest.relative[0];
+      const double length = edge.norm();
+      if (length > 0.0) return Projection{q, FactoredHessian::identity().add(-1.0, edge / length)};
+    } else if (nearest.count == 3) {
+      const Vec3 normal = (nearest.relative[1] - nearest.relative[0])
+                              .cross(nearest.relative[2] - nearest.relative[0]);
+      const double area = normal.norm();
+      if (area > 0.0) return Projection{q, FactoredHessian().add(1.0, normal / area)};
+    }
+    return Projection{q, FactoredHessian::identity()};
+  }
+  Vec3 support(const Vec3& w) const { return hull.support(w); }
+  double leastAlong(const Vec3& w) const { return -hull.mostAlong(-w); }
+  Vec3 centre() const { return hull.centre(); }
+};
+
 template <typename S>
 struct ConvexTraits {
   /// Vertices finite and in range; faces well encoded (ConvexTarget::listsAreValid),
@@ -1257,8 +1296,8 @@ struct ConvexTraits {
   /// kShapeGapTolerance of the scene from the vertices' hull: the planes of
   /// faces planar only to rounding reach that far beyond it near some corners
   /// (docs/disk_shape_distance.md, section 4, "Convex"). Then the closed form
-  /// on the vertices alone (closedFormBySupport), where it settles; nullopt
-  /// otherwise (the meeting stands). With the planes reaching at most
+  /// on the vertices alone (closedFormBySupport), else the generic solver on
+  /// the vertices' hull (VertexHullTarget). With the planes reaching at most
   /// kPlanesReach thicknesses beyond the vertices' hull, no search is needed
   /// for hulls whose faces are thinner than kShapeGapTolerance / kPlanesReach
   /// of the scene (every hull of planar faces, and data in double planar to
@@ -1284,8 +1323,9 @@ struct ConvexTraits {
       return std::nullopt;
     }
     const LeafToDisk by_vertices = closedFormBySupport(disk, hull, scale, kOffSupportSetPasses);
-    if (!by_vertices.exact) return std::nullopt;
-    return by_vertices;
+    if (by_vertices.exact) return by_vertices;
+    return exactLeafOf(solveDiskShape(VertexHullTarget<S>{hull}, disk, 0.0, scale,
+                                      SolverGoal::distance));
   }
 
   /// The closed form's passes (at most `passes`) with the hull's feature nearest p found by the
