@@ -1193,22 +1193,25 @@ struct ConvexTarget {
   }
 };
 
-/// The hull of a Convex's vertices alone as the generic solver's Target: the
-/// projection by the support search (nearestVertexSimplex, its nearest
-/// simplex: a vertex, an edge or a triangle of vertices), the support a
-/// vertex. Both read the same set, so the certificate needs no faces'
-/// thickness. It answers the meetings of the face planes that lie off the
-/// vertices' hull where the closed form on the vertices does not settle
-/// (ConvexTraits::answerOffVertices): its projection costs support scans,
-/// which only such rare pairs pay.
+/// The hull of a Convex's vertices alone as the generic solver's Target, in
+/// the hull's frame: the projection by the support search (nearestVertexSimplex,
+/// its nearest simplex: a vertex, an edge or a triangle of vertices), the
+/// support a vertex (ties: supportIndex's first). Both read the same set, so
+/// the certificate needs no faces' thickness, and the answer is exact to the
+/// solver's tolerance on that set; a simplex search stopped short by rounding
+/// still projects onto a point of the set (the distance stays an upper bound),
+/// and only the speed depends on its Hessian. It answers the meetings of the
+/// face planes that lie off the vertices' hull where the closed form on the
+/// vertices does not settle (ConvexTraits::answerOffVertices): its projection
+/// costs support scans, which only such rare pairs pay.
 template <typename S>
 struct VertexHullTarget {
   const ConvexTarget<S>& hull;
 
   /// The point of the vertices' hull nearest y, with psi's Hessian I - D proj:
   /// I at a vertex, I - e e^T on an edge of direction e, m m^T on a triangle
-  /// of normal m, 0 inside (a degenerate simplex takes I: only the speed
-  /// depends on it).
+  /// of normal m, 0 inside (a degenerate simplex, of zero length or area,
+  /// takes I).
   Projection project(const Vec3& y) const {
     const HullSimplex nearest = hull.nearestVertexSimplex(y, hull.simplexTowards(y));
     if (nearest.inside()) return Projection{y, FactoredHessian()};
