@@ -1677,16 +1677,25 @@ TEST(DiskShapeCases, FloatHullsBesideADiskDouble) {
 /// on the vertices does not settle such a meeting, the generic solver on the
 /// vertices' hull answers (ConvexTraits::answerOffVertices); without it, 15
 /// of the 20,000 double pairs fail, at distance 0 with gaps of 3-61 delta (4
-/// of them also called touching by intersect()).
+/// of them also called touching by intersect()). Then kLargeWedges prisms
+/// over a 64..100-gon inscribed in an ellipse of axes a and b = a / 3300 ..
+/// a / 1000 (tips of 0.7-3.7 degrees; hulls of the closed form by the support
+/// search, kSupportSearchVertexCount, and of vertex clusters):
+/// without the fallback, 7 of these fail (distance 0 at gaps of 2-11 delta).
+constexpr int kLargeWedges = 10000;
 template <typename S>
 void checkSharpWedgesBesideADisk(std::uint64_t seed) {
   fcl_disk_test::Random rng(seed);
-  constexpr int kWedges = 20000;
+  constexpr int kRhombusWedges = 20000, kWedges = kRhombusWedges + kLargeWedges;
   int meetings = 0, beyond_a_thickness = 0;
   for (int trial = 0; trial < kWedges; ++trial) {
+    const bool large = trial >= kRhombusWedges;
     const double k = rng.logUniform(1e-3, 1e3);
-    const double a = k, b = a * rng.uniform(2e-3, 1e-2), h = 0.5 * k;
-    const HullLists lists = fcl_disk_test::floatTaperedPrism(4, a, b, h, rng.uniform(0.3, 1.0));
+    const double a = k, b = a * (large ? rng.uniform(3e-4, 1e-3) : rng.uniform(2e-3, 1e-2));
+    const double h = 0.5 * k;
+    const int sides = large ? 64 + int(rng.uniform(0.0, 37.0)) : 4;
+    const HullLists lists =
+        fcl_disk_test::floatTaperedPrism(sides, a, b, h, rng.uniform(0.3, 1.0));
     const double delta = facesThickness(lists);
     const Eigen::Matrix3d R_disk = rng.rotation(), R_hull = rng.rotation();
     const Vector3d w = (-R_hull.col(0) + 0.002 * rng.unitVector()).normalized();
