@@ -1677,16 +1677,16 @@ TEST(DiskShapeCases, FloatHullsBesideADiskDouble) {
 /// on the vertices does not settle such a meeting, the generic solver on the
 /// vertices' hull answers (ConvexTraits::answerOffVertices); without it, 15
 /// of the 20,000 double pairs fail, at distance 0 with gaps of 3-61 delta (4
-/// of them also called touching by intersect()). Then kLargeWedges prisms
+/// of them also called touching by intersect()). Then 10,000 prisms
 /// over a 64..100-gon inscribed in an ellipse of axes a and b = a / 3300 ..
 /// a / 1000 (tips of 0.7-3.7 degrees; hulls of the closed form by the support
 /// search, kSupportSearchVertexCount, and of vertex clusters):
 /// without the fallback, 7 of these fail (distance 0 at gaps of 2-11 delta).
-constexpr int kLargeWedges = 10000;
 template <typename S>
 void checkSharpWedgesBesideADisk(std::uint64_t seed) {
   fcl_disk_test::Random rng(seed);
-  constexpr int kRhombusWedges = 20000, kWedges = kRhombusWedges + kLargeWedges;
+  constexpr int kRhombusWedges = 20000, kLargeWedges = 10000;
+  constexpr int kWedges = kRhombusWedges + kLargeWedges;
   int meetings = 0, beyond_a_thickness = 0;
   for (int trial = 0; trial < kWedges; ++trial) {
     const bool large = trial >= kRhombusWedges;
