@@ -167,6 +167,36 @@ inline Vector3d vertexLeastAlong(const std::vector<Vector3d>& vertices, const Ei
   return least;
 }
 
+/// A disk of radius r and a hull of `vertices`, their rotations R_disk and
+/// R_hull as poses in S, the hull translated so that along unit w its
+/// vertices' support clears the disk's by about `wanted_gap` (0: they touch).
+/// Read back in double from the poses in S: the hull's translation t and the
+/// clearance `gap` they give.
+template <typename S>
+struct HullBesideDisk {
+  fcl::Transform3<S> X_WD, X_WS;
+  Vector3d t;
+  double gap;
+};
+template <typename S>
+HullBesideDisk<S> placeHullBesideDisk(const std::vector<Vector3d>& vertices, S r,
+                                      const Eigen::Matrix3d& R_disk,
+                                      const Eigen::Matrix3d& R_hull, const Vector3d& w,
+                                      double wanted_gap) {
+  HullBesideDisk<S> placed;
+  placed.X_WD = placed.X_WS = fcl::Transform3<S>::Identity();
+  placed.X_WD.linear() = R_disk.cast<S>();
+  placed.X_WS.linear() = R_hull.cast<S>();
+  const Eigen::Matrix3d R_D = placed.X_WD.linear().template cast<double>();
+  const Eigen::Matrix3d R_S = placed.X_WS.linear().template cast<double>();
+  const Vector3d disk_support = diskPointMostAlong(double(r), R_D.col(2).normalized(), w);
+  const Vector3d lowest = vertexLeastAlong(vertices, R_S, w);
+  placed.X_WS.translation() = (disk_support - lowest + wanted_gap * w).template cast<S>();
+  placed.t = placed.X_WS.translation().template cast<double>();
+  placed.gap = (lowest + placed.t).dot(w) - disk_support.dot(w);
+  return placed;
+}
+
 /// FCL's face list of `lists`: [k, i_1..i_k, k', ...].
 inline std::shared_ptr<std::vector<int>> faceListOf(const HullLists& lists) {
   auto face_list = std::make_shared<std::vector<int>>();

@@ -1602,20 +1602,13 @@ BesideADisk checkHullBesideADisk(const HullLists& lists, double delta, double si
                                  const Vector3d& w, double wanted_gap, int trial) {
   const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
   const S r = S(r_in);
-  fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
-  X_WD.linear() = R_disk.cast<S>();
-  X_WS.linear() = R_hull.cast<S>();
-  // In double from the data in S.
-  const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
-  const Eigen::Matrix3d R_S = X_WS.linear().template cast<double>();
-  const Vector3d n_disk = R_D.col(2).normalized();
-  const Vector3d disk_support = fcl_disk_test::diskPointMostAlong(double(r), n_disk, w);
-  const Vector3d lowest = fcl_disk_test::vertexLeastAlong(lists.vertices, R_S, w);
-  X_WS.translation() = (disk_support - lowest + wanted_gap * w).template cast<S>();
-  const Vector3d t = X_WS.translation().template cast<double>();
-  const double gap = (lowest + t).dot(w) - disk_support.dot(w);
+  const auto placed =
+      fcl_disk_test::placeHullBesideDisk<S>(lists.vertices, r, R_disk, R_hull, w, wanted_gap);
+  const fcl::Transform3<S>& X_WD = placed.X_WD;
+  const fcl::Transform3<S>& X_WS = placed.X_WS;
+  const double gap = placed.gap;
   const auto answer = fcl_disk::diskShapeDistance(r, X_WD, hull, X_WS);
-  const double scale = double(r) + size + t.norm();
+  const double scale = double(r) + size + placed.t.norm();
   const double allowed = delta + kAccuracyBeyondThickness<S> * scale;
   EXPECT_GE(double(answer.distance), gap - allowed)
       << "trial " << trial << ": gap " << gap / delta << " thicknesses, distance "

@@ -310,23 +310,16 @@ void checkHullsTouchingAlongTheirSeparation(std::uint64_t seed) {
     const fcl_disk_test::HullLists& lists = drawn.lists;
     const fcl::Convex<S> hull = fcl_disk_test::convexOf<S>(lists);
     const S r = S(drawn.r);
-    fcl::Transform3<S> X_WD = fcl::Transform3<S>::Identity(), X_WS = X_WD;
-    X_WD.linear() = drawn.R_disk.template cast<S>();
-    X_WS.linear() = drawn.R_hull.template cast<S>();
     // In double from the data in S: the disk's rim point and the hull's
     // vertex lowest along w meet.
     const Vd w = rng.unitVector();
-    const Eigen::Matrix3d R_D = X_WD.linear().template cast<double>();
-    const Eigen::Matrix3d R_S = X_WS.linear().template cast<double>();
-    const Vd disk_support = fcl_disk_test::diskPointMostAlong(double(r), R_D.col(2).normalized(), w);
-    const Vd lowest = fcl_disk_test::vertexLeastAlong(lists.vertices, R_S, w);
-    X_WS.translation() = (disk_support - lowest).template cast<S>();
-    const Vd t = X_WS.translation().template cast<double>();
-    const double F = disk_support.dot(w) - (lowest + t).dot(w);
+    const auto placed = fcl_disk_test::placeHullBesideDisk<S>(lists.vertices, r, drawn.R_disk,
+                                                              drawn.R_hull, w, 0.0);
+    const double F = -placed.gap;
     fcl_disk::DiskContact<S> contact;
-    if (!fcl_disk::diskShapeIntersect(r, X_WD, hull, X_WS, &contact)) continue;
+    if (!fcl_disk::diskShapeIntersect(r, placed.X_WD, hull, placed.X_WS, &contact)) continue;
     ++touching;
-    const double scale = double(r) + drawn.extent.norm() + t.norm();
+    const double scale = double(r) + drawn.extent.norm() + placed.t.norm();
     EXPECT_LE(double(contact.penetration_depth), F + kDepthRelative<S> * scale)
         << "trial " << trial << ": scale " << scale;
   }
