@@ -48,7 +48,8 @@ constexpr int kFeaturePasses = 3;
 /// slowly. With 3, none of the 78 such meetings of
 /// FacePlanesReachingBeyondTheVerticesAtACorner (4,000 near-corner pairs)
 /// settles and the generic solver on the vertices answers them (the test
-/// takes 413 ms, against 393 ms with 16, which settles them). Only such
+/// takes 413 ms, against 393 ms with 16, which settles them: docs/
+/// disk_shape_distance.md, section 4, "Convex"). Only such
 /// meetings of hulls with a thickness pay for it.
 constexpr int kOffSupportSetPasses = 16;
 
