@@ -944,10 +944,12 @@ struct ConvexTarget {
     }
     const Eigen::VectorXd& heights = planeHeights(y);
     const double* height_of = heights.data();
-    Eigen::Index farthest_index = 0;
-    const double farthest_height = heights.maxCoeff(&farthest_index);
+    // The first face reaching the largest height: Eigen's vectorised maximum,
+    // then a search for it (maxCoeff(&index) compares one plane at a time).
+    const double farthest_height = heights.maxCoeff();
     if (!(farthest_height > 0.0)) return std::nullopt;
-    const int farthest = int(farthest_index);
+    const int farthest =
+        int(std::find(height_of, height_of + face_count, farthest_height) - height_of);
     auto best = onto_face(faces[farthest]);
     int best_face = farthest;
     if (isNearestPoint(y, best.q, farthest_height)) return std::pair(best, best_face);
