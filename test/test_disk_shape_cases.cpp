@@ -943,10 +943,10 @@ TEST(DiskShapeCases, NearlyParallelPolygonFaces) {
 }
 
 
-// Hulls large enough for the Convex's face climb and vertex clusters
-// (ConvexTarget::climbToHighestPlane, mostAlong): a strictly convex ring hull
-// (130 vertices, 144 faces) and a subdivided cube (98 vertices, 192 coplanar
-// triangles), 500 random disk poses each, in double and float: every
+// Hulls large enough for the Convex's face climb and support search
+// (ConvexTarget::climbToHighestPlane, nearestVertexSimplex): a strictly convex
+// ring hull (130 vertices, 144 faces; with vertex clusters, mostAlong) and a
+// subdivided cube (98 vertices, 192 coplanar triangles), 500 random disk poses each, in double and float: every
 // certificate closes, and on the first 15 the distance and the lower bound
 // agree with the independent long-double reference.
 template <typename S>
@@ -1113,7 +1113,7 @@ TEST(DiskShapeCases, ConvexHullsQueriedInTurnGiveEachHullsAnswer) {
 // A large hull's answers do not depend on whether the thread has built its
 // vertex clusters (from its second query on): each of 300 poses against a
 // fresh copy of the hull (a new address, so a first query, no clusters) gives
-// bit for bit what one kept hull gives. The subdivided cube (98 vertices on a
+// bit for bit what one kept hull gives. The subdivided cube (152 vertices on a
 // grid) ties along every axis and diagonal, where a support index that
 // depended on the clusters' order would differ.
 TEST(DiskShapeCases, LargeHullAnswersDoNotDependOnItsClusters) {
@@ -1123,7 +1123,8 @@ TEST(DiskShapeCases, LargeHullAnswersDoNotDependOnItsClusters) {
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   // Every copy stays alive, so that none is built at an address a slot keeps.
   std::vector<std::shared_ptr<fcl::Convexd>> copies;
-  for (const HullLists& lists : {subdividedCube(4, 0.6), ringHull(8, 16, Vector3d(0.5, 0.4, 0.3))}) {
+  for (const HullLists& lists : {subdividedCube(5, 0.6), ringHull(8, 16, Vector3d(0.5, 0.4, 0.3))}) {
+    ASSERT_GE(lists.vertices.size(), 128u);  // kClusteringVertexCount: hulls with clusters
     const auto kept = convexOf(lists, &unused);
     for (int i = 0; i < 300; ++i) {
       const Vector3d normal =

@@ -63,16 +63,17 @@ constexpr double kFuzzGapRelative = 1e-9;
 }
 
 /// A large hull for the Convex pair's paths of many faces and vertices
-/// (src/pairs/disk_convex.cpp: the face graph's climb from 100 faces, the
-/// vertex clusters from 64 vertices): a prism over an ellipse's inscribed
-/// N-gon, N = 32..63 (64..126 vertices), its top ring scaled by `taper`
+/// (src/pairs/disk_convex.cpp: the support search from 64 vertices, the face
+/// graph's climb from 100 faces, the vertex clusters from 128 vertices): a
+/// prism over an ellipse's inscribed N-gon, N = 32..79 (64..158 vertices),
+/// its top ring scaled by `taper`
 /// (0: all top vertices one point), its sides quadrilaterals or, with the
 /// byte's low bit, pairs of coplanar triangles (N + 2 or 2 N + 2 faces: the
 /// climb from N = 49 on). Sizes stop there: the oracle's long-double distances
 /// grow with the faces, and the target's other shapes share its time.
 void makeLargeHull(ByteReader& in, Real a, Real b, Real h, Real taper, Shape* s) {
   const std::uint8_t shape_byte = in.byte();
-  const int n = 32 + (shape_byte >> 1) % 32;
+  const int n = 32 + (shape_byte >> 1) % 48;
   const bool triangulated = shape_byte & 1;
   for (const Real z : {-h, h}) {
     const Real ring = z < 0 ? Real(1) : taper;
