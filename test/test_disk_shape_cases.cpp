@@ -946,9 +946,10 @@ TEST(DiskShapeCases, NearlyParallelPolygonFaces) {
 // Hulls large enough for the Convex's face climb and support search
 // (ConvexTarget::climbToHighestPlane, nearestVertexSimplex): a strictly convex
 // ring hull (130 vertices, 144 faces; with vertex clusters, mostAlong) and a
-// subdivided cube (98 vertices, 192 coplanar triangles), 500 random disk poses each, in double and float: every
-// certificate closes, and on the first 15 the distance and the lower bound
-// agree with the independent long-double reference.
+// subdivided cube (98 vertices, 192 coplanar triangles), 500 random disk poses
+// each, in double and float: every certificate closes, and on the first 15 the
+// distance and the lower bound agree with the independent long-double
+// reference.
 template <typename S>
 void checkLargeHull(const HullLists& lists, const char* name, int reference_poses = 15,
                     const Vector3d& hull_position = Vector3d::Zero()) {

@@ -327,8 +327,9 @@ LeafToDisk ellipsoidAgainstRim(const EllipsoidTarget& ellipsoid, const DiskInSha
 /// side of it, projecting into the disk. Else the rim iteration from the rim
 /// point towards where the ellipsoid comes nearest the plane (the foot of that
 /// extreme point, or of its centre where the plane cuts it), with w from that
-/// point along the ellipsoid's normal line through it. Lengths in units of about the
-/// scene's size (`scale` in [1, 2)); every semi-axis > 0; `disk` orthonormal.
+/// point along the ellipsoid's normal line through it. Lengths in units of
+/// about the scene's size (`scale` in [1, 2)); every semi-axis > 0; `disk`
+/// orthonormal.
 LeafToDisk ellipsoidApart(const EllipsoidTarget& ellipsoid, const DiskInShape& disk,
                           double scale) {
   const Vec3& e = ellipsoid.e;
