@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <memory>
@@ -1768,34 +1769,22 @@ TEST(DiskShapeCases, FacePlanesReachingBeyondTheVerticesAtACorner) {
   EXPECT_GT(beyond_a_thickness, 1000);
 }
 
-// The closed forms of the shapes with straight edges (a capsule's axis, a box's,
-// a triangle's and a Convex's edges) pair the disk with an edge by the segment
-// solver and certify the pair along its separation with the component along
-// the edge dropped; the solver stops as soon as that certificate would close
-// (src/segment_to_disk.h, "Precision"). Certified along the separation itself,
-// a kink where the edge's ends tie makes the certificate first-order in the
-// point's error, and about one separated pose in seven would miss the closed
-// form for the generic solver. On random poses (disk r = 0.5 rotated at
-// random, centre in the unit ball; shapes of size ~0.5 at the origin), the
-// whole scene scaled by 1e-80, 1 and 1e80 (where squares of squares of
-// lengths would leave double's range), all but one in a thousand separated
-// pairs settle in closed form (iterations == 0), all certified to 1e-12.
-TEST(DiskShapeCases, EdgePairsSettleInClosedForm) {
-  fcl_disk_test::Random random(20261130);
-  constexpr int kPoses = 8000;
-  constexpr double kMostInClosedForm = 0.999;
+using NamedShapes = std::vector<std::pair<std::string, std::shared_ptr<fcl::ShapeBase<double>>>>;
+
+/// On `poses` random poses of a disk of radius 0.5 k (rotated at random, its
+/// centre in the ball of radius k) against each of shapes_at(k), of size ~0.5
+/// k at the origin, for k = 1e-80, 1 and 1e80 (where squares of squares of
+/// lengths would leave double's range): more than half the pairs are
+/// separated, every separated answer is certified to 1e-12 of the scene, and
+/// at least `fraction` of them settle in closed form (iterations == 0).
+template <typename ShapesAt>
+void checkSettleInClosedForm(std::uint64_t seed, int poses, double fraction,
+                             ShapesAt&& shapes_at) {
+  fcl_disk_test::Random random(seed);
   for (const double k : {1e-80, 1.0, 1e80}) {
-    const std::vector<std::pair<std::string, std::shared_ptr<fcl::ShapeBase<double>>>> shapes = {
-        {"box", std::make_shared<fcl::Box<double>>(0.6 * k, 0.5 * k, 0.4 * k)},
-        {"capsule", std::make_shared<fcl::Capsule<double>>(0.2 * k, 0.6 * k)},
-        {"triangle", std::make_shared<fcl::TriangleP<double>>(k * Vector3d(0.4, -0.1, 0.1),
-                                                               k * Vector3d(-0.3, 0.35, -0.05),
-                                                               k * Vector3d(-0.1, -0.4, 0.2))},
-        {"convex",
-         std::make_shared<fcl::Convex<double>>(boxAsConvex<double>(0.6 * k, 0.5 * k, 0.4 * k))}};
-    for (const auto& [name, shape] : shapes) {
+    for (const auto& [name, shape] : shapes_at(k)) {
       int separated = 0, in_closed_form = 0;
-      for (int i = 0; i < kPoses; ++i) {
+      for (int i = 0; i < poses; ++i) {
         Transform3d X_WD = kIdentity;
         X_WD.linear() = random.rotation();
         X_WD.translation() = k * random.inBall(1.0);
@@ -1810,47 +1799,49 @@ TEST(DiskShapeCases, EdgePairsSettleInClosedForm) {
         ASSERT_LE(result.distance - result.lower_bound, kExact * scale)
             << name << " at scale " << k << ", pose " << i;
       }
-      EXPECT_GT(separated, kPoses / 2) << name << " at scale " << k;
-      EXPECT_GE(in_closed_form, kMostInClosedForm * separated) << name << " at scale " << k;
+      EXPECT_GT(separated, poses / 2) << name << " at scale " << k;
+      EXPECT_GE(in_closed_form, fraction * separated) << name << " at scale " << k;
     }
   }
+}
+
+// The closed forms of the shapes with straight edges (a capsule's axis, a box's,
+// a triangle's and a Convex's edges) pair the disk with an edge by the segment
+// solver and certify the pair along its separation with the component along
+// the edge dropped; the solver stops as soon as that certificate would close
+// (src/segment_to_disk.h, "Precision"). Certified along the separation itself,
+// a kink where the edge's ends tie makes the certificate first-order in the
+// point's error, and about one separated pose in seven would miss the closed
+// form for the generic solver. On random poses (checkSettleInClosedForm), all
+// but one in a thousand separated pairs settle in closed form.
+TEST(DiskShapeCases, EdgePairsSettleInClosedForm) {
+  checkSettleInClosedForm(20261130, 8000, 0.999, [](double k) {
+    return NamedShapes{
+        {"box", std::make_shared<fcl::Box<double>>(0.6 * k, 0.5 * k, 0.4 * k)},
+        {"capsule", std::make_shared<fcl::Capsule<double>>(0.2 * k, 0.6 * k)},
+        {"triangle", std::make_shared<fcl::TriangleP<double>>(k * Vector3d(0.4, -0.1, 0.1),
+                                                               k * Vector3d(-0.3, 0.35, -0.05),
+                                                               k * Vector3d(-0.1, -0.4, 0.2))},
+        {"convex",
+         std::make_shared<fcl::Convex<double>>(boxAsConvex<double>(0.6 * k, 0.5 * k, 0.4 * k))}};
+  });
 }
 
 // The ellipsoid's rim iteration starts from w along the ellipsoid's normal line
 // through the rim point (src/pairs/disk_ellipsoid.cpp, ellipsoidApart), which
 // serves elongated and flat ellipsoids as it does round ones: of the separated
-// random poses of a needle and of two flat ellipsoids, at least 90% settle in
-// closed form (iterations == 0; 94-98% here), all certified to 1e-12. A start
-// from w to the rim point's radial point on the ellipsoid, with one step on
-// the dual over the whole disk, settles 52-74%.
+// random poses (checkSettleInClosedForm) of a needle and of two flat
+// ellipsoids, at least 90% settle in closed form (94-98% here). A start from w
+// to the rim point's radial point on the ellipsoid, with one step on the dual
+// over the whole disk, settles 52-74%.
 TEST(DiskShapeCases, ElongatedEllipsoidsSettleInClosedForm) {
-  fcl_disk_test::Random random(20261202);
-  constexpr int kPoses = 4000;
-  constexpr double kMostInClosedForm = 0.9;
-  for (const double k : {1e-80, 1.0, 1e80}) {
-    const std::vector<std::pair<std::string, Vector3d>> semi_axes = {
-        {"needle", Vector3d(0.5, 0.01, 0.01)},
-        {"flat", Vector3d(0.5, 0.5, 0.005)},
-        {"flat and narrow", Vector3d(0.5, 0.15, 0.0005)}};
-    for (const auto& [name, axes] : semi_axes) {
-      const fcl::Ellipsoid<double> ellipsoid(k * axes);
-      int separated = 0, in_closed_form = 0;
-      for (int i = 0; i < kPoses; ++i) {
-        Transform3d X_WD = kIdentity;
-        X_WD.linear() = random.rotation();
-        X_WD.translation() = k * random.inBall(1.0);
-        const auto result = fcl_disk::diskShapeDistance(0.5 * k, X_WD, ellipsoid, kIdentity);
-        if (!(result.distance > 0.0)) continue;
-        ++separated;
-        in_closed_form += result.iterations == 0;
-        const double scale = k + X_WD.translation().norm();  // r + R_S + |c_D - c_S|
-        ASSERT_LE(result.distance - result.lower_bound, kExact * scale)
-            << name << " at scale " << k << ", pose " << i;
-      }
-      EXPECT_GT(separated, kPoses / 2) << name << " at scale " << k;
-      EXPECT_GE(in_closed_form, kMostInClosedForm * separated) << name << " at scale " << k;
-    }
-  }
+  checkSettleInClosedForm(20261202, 4000, 0.9, [](double k) {
+    return NamedShapes{
+        {"needle", std::make_shared<fcl::Ellipsoid<double>>(k * Vector3d(0.5, 0.01, 0.01))},
+        {"flat", std::make_shared<fcl::Ellipsoid<double>>(k * Vector3d(0.5, 0.5, 0.005))},
+        {"flat and narrow",
+         std::make_shared<fcl::Ellipsoid<double>>(k * Vector3d(0.5, 0.15, 0.0005))}};
+  });
 }
 
 }  // namespace
