@@ -42,6 +42,15 @@ struct EllipsoidTarget {
     return level;
   }
 
+  /// The radial estimate of the projection's root t for y outside, at level
+  /// L (levelOnAxes): y - q = t A q (A = diag(1 / e_i^2), `squares` = e_i^2)
+  /// with q taken as the radial point y / sqrt(L) and |y - q| as
+  /// (1 - 1 / sqrt(L)) |y|, so t ~ (sqrt(L) - 1) |y| / |A y| (exact for a
+  /// sphere).
+  static double radialRootEstimate(const Vec3& y, const Vec3& squares, double level) {
+    return (std::sqrt(level) - 1.0) * y.norm() / y.cwiseQuotient(squares).norm();
+  }
+
   Projection project(const Vec3& y) const {
     // Within the ellipsoid's extent along its nonzero axes: the projection drops
     // the zero-axis coordinates (for a solid ellipsoid, y itself), so D proj is
@@ -74,15 +83,12 @@ struct EllipsoidTarget {
       lo = std::max(lo, std::abs(ey[i]) - e2[i]);
     }
     double hi = std::max(ey.norm() - e_min * e_min, lo);
-    // Start: y - q = t A q (A = diag(1 / e_i^2)); with q estimated by the radial
-    // point y / sqrt(L) (L = levelOnAxes(y)) and |y - q| by (1 - 1/sqrt(L)) |y|,
-    // t ~ (sqrt(L) - 1) |y| / |A y| (exact for a sphere). On the report's
-    // ellipsoid cases it is within 3% of the root in the median, and a
-    // projection takes 3.1 evaluations of phi (docs/disk_shape_distance.md,
-    // section 4). Out of the bracket, or not finite
-    // (A y overflows for semi-axes near kFlatSemiAxis), the bracket's end.
-    const Vec3 a_y = yu_on_axes.cwiseQuotient(e2.cwiseMax(std::numeric_limits<double>::min()));
-    const double radial = (std::sqrt(level) - 1.0) * yu_on_axes.norm() / a_y.norm();
+    // Start: radialRootEstimate. On the report's ellipsoid cases it is within
+    // 3% of the root in the median, and a projection takes 3.1 evaluations of
+    // phi (docs/disk_shape_distance.md, section 4). Out of the bracket, or not
+    // finite (A y overflows for semi-axes near kFlatSemiAxis), the bracket's end.
+    const double radial =
+        radialRootEstimate(yu_on_axes, e2.cwiseMax(std::numeric_limits<double>::min()), level);
     double t = radial > lo ? std::min(radial, hi) : lo;
     // With r_i = e_i y_i / (t + e_i^2): F = sum r_i^2 = f, F' = -2 g1 and
     // F'' = 6 g2 (g1 = sum r_i^2 / (t + e_i^2), g2 = sum r_i^2 / (t + e_i^2)^2).
@@ -357,13 +363,12 @@ LeafToDisk ellipsoidApart(const EllipsoidTarget& ellipsoid, const DiskInShape& d
   if (rim_level <= 1.0) return meetingAt(rim_point);
   // w from the rim point p to q(t) = (I + t A)^-1 p (A = E^-2), the point of
   // the ellipsoid's level surface whose normal line passes through p, at the
-  // radial estimate of the projection's root t (EllipsoidTarget::project):
+  // radial estimate of the projection's root t (the projection's start):
   // q(t) - p = -t (E^2 + t I)^-1 p has the length and direction of p's
   // separation from the ellipsoid to first order. A shorter w (to p's radial
   // point on the ellipsoid) sends the saddle step through w = 0.
   const Vec3 e2 = e.cwiseProduct(e);
-  const double t = (std::sqrt(rim_level) - 1.0) * rim_point.norm() /
-                   rim_point.cwiseQuotient(e2).norm();
+  const double t = EllipsoidTarget::radialRootEstimate(rim_point, e2, rim_level);
   return ellipsoidAgainstRim(ellipsoid, disk, rim,
                              -t * rim_point.cwiseQuotient(e2 + Vec3::Constant(t)), scale);
 }
