@@ -66,11 +66,11 @@ constexpr double kFuzzGapRelative = 1e-9;
 /// (src/pairs/disk_convex.cpp: the support search from 64 vertices, the face
 /// graph's climb from 100 faces, the vertex clusters from 128 vertices): a
 /// prism over an ellipse's inscribed N-gon, N = 32..79 (64..158 vertices),
-/// its top ring scaled by `taper`
-/// (0: all top vertices one point), its sides quadrilaterals or, with the
-/// byte's low bit, pairs of coplanar triangles (N + 2 or 2 N + 2 faces: the
-/// climb from N = 49 on). Sizes stop there: the oracle's long-double distances
-/// grow with the faces, and the target's other shapes share its time.
+/// its top ring scaled by `taper` (0: all top vertices one point), its sides
+/// quadrilaterals or, with the byte's low bit, pairs of coplanar triangles
+/// (N + 2 or 2 N + 2 faces: the climb from N = 49 on). Sizes stop there: the
+/// oracle's long-double distances grow with the faces, and the target's other
+/// shapes share its time.
 void makeLargeHull(ByteReader& in, Real a, Real b, Real h, Real taper, Shape* s) {
   const std::uint8_t shape_byte = in.byte();
   const int n = 32 + (shape_byte >> 1) % 48;
